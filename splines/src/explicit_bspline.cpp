@@ -23,22 +23,23 @@ double factorial(int k) {
   return f;
 }
 
-using VectorXl = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+using MatrixXl = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 
-// Taylor data D^(q)(b + h) of the polynomial whose Taylor data at b is a (digest §2.1.3 update).
-template <class Vec>
-Vec shift_taylor(const Vec& a, typename Vec::Scalar h) {
-  const Index n1 = a.size();
-  Vec out = Vec::Zero(n1);
-  for (Index q = 0; q < n1; ++q) {
-    typename Vec::Scalar hp = 1, fact = 1;
-    for (Index i = 0; q + i < n1; ++i) {
-      out(q) += a(q + i) * hp / fact;
+// Taylor data D^(q)(b + h) of the polynomial whose Taylor data at b is a, in place
+// (digest §2.1.3 update): D^(q) <- sum_i D^(q+i) h^i / i!. Ascending q reads only entries not
+// yet overwritten.
+template <class Vec, class Scalar>
+void shift_taylor(Vec& a, Scalar h) {
+  const size_t n1 = static_cast<size_t>(a.size());
+  for (size_t q = 0; q < n1; ++q) {
+    Scalar sum = 0, hp = 1, fact = 1;
+    for (size_t i = 0; q + i < n1; ++i) {
+      sum += a[q + i] * hp / fact;
       hp *= h;
-      fact *= static_cast<typename Vec::Scalar>(i + 1);
+      fact *= static_cast<Scalar>(i + 1);
     }
+    a[q] = sum;
   }
-  return out;
 }
 
 void check_local_knots(const VectorXd& X, int n) {
@@ -59,16 +60,16 @@ void check_local_knots(const VectorXd& X, int n) {
 
 // Coefficients a^(q) of N^(q) in the degree-(n-q) B-splines N_{j,n-q}(X_j..X_{j+n-q+1}),
 // q = 0..n, by the derivative recurrence (no cancellation: a^(q) alternates in sign).
-std::vector<VectorXl> derivative_coefficients(const VectorXd& X, int n) {
-  std::vector<VectorXl> a(n + 1);
-  a[0] = VectorXl::Ones(1);
+// Row q holds a^(q)_0..a^(q)_q.
+MatrixXl derivative_coefficients(const VectorXd& X, int n) {
+  MatrixXl a = MatrixXl::Zero(n + 1, n + 2);
+  a(0, 0) = 1;
   for (int q = 0; q < n; ++q) {
     const int p = n - q;
-    a[q + 1] = VectorXl::Zero(q + 2);
     for (int j = 0; j <= q + 1; ++j) {
       const long double den = static_cast<long double>(X(j + p)) - X(j);
       if (den > 0) // otherwise N_{j,p-1} is the zero function
-        a[q + 1](j) = p * ((j <= q ? a[q](j) : 0.0L) - (j >= 1 ? a[q](j - 1) : 0.0L)) / den;
+        a(q + 1, j) = p * (a(q, j) - (j >= 1 ? a(q, j - 1) : 0.0L)) / den;
     }
   }
   return a;
@@ -95,7 +96,7 @@ ExplicitBSpline explicit_bspline(const VectorXd& X, int n) {
   for (double v : b)
     if (std::count(X.data(), X.data() + X.size(), v) > n + 1)
       throw std::invalid_argument("knot multiplicity exceeds degree + 1");
-  const std::vector<VectorXl> a = derivative_coefficients(X, n);
+  const MatrixXl a = derivative_coefficients(X, n);
   // Jump of N^(q) at b: the degree-p = n-q B-spline N_{j,p} is discontinuous only where its own
   // knots X_j..X_{j+p+1} hold b with multiplicity p+1: it switches on (starts with value 1) when
   // b = X_j = X_{j+p} < X_{j+p+1}, and off when X_j < X_{j+1} = X_{j+p+1} = b.
@@ -104,9 +105,9 @@ ExplicitBSpline explicit_bspline(const VectorXd& X, int n) {
     long double J = 0;
     for (int j = 0; j <= q; ++j) {
       if (X(j) == v && X(j + p) == v && X(j + p + 1) > v)
-        J += a[q](j);
+        J += a(q, j);
       if (X(j) < v && X(j + 1) == v && X(j + p + 1) == v)
-        J -= a[q](j);
+        J -= a(q, j);
     }
     return J;
   };
@@ -118,12 +119,13 @@ ExplicitBSpline explicit_bspline(const VectorXd& X, int n) {
   // Extended precision: the forward integration carries absolute errors from short spans into
   // long ones (growth ~ (span ratio)^n); 64-bit mantissas keep that below double round-off for
   // the ratios met in practice (docs/formulas.md has the measured table).
-  VectorXl D = VectorXl::Zero(n + 1);
+  std::vector<long double> D(static_cast<size_t>(n) + 1, 0.0L);
   for (Index t = 0; t < s; ++t) {
-    for (int q = 0; q <= n; ++q)
-      D(q) += jump(q, b[t]);
-    N.taylor.row(t) = D.transpose().cast<double>();
-    D = shift_taylor(D, static_cast<long double>(b[t + 1]) - b[t]);
+    for (int q = 0; q <= n; ++q) {
+      D[static_cast<size_t>(q)] += jump(q, b[t]);
+      N.taylor(t, q) = static_cast<double>(D[static_cast<size_t>(q)]);
+    }
+    shift_taylor(D, static_cast<long double>(b[t + 1]) - b[t]);
   }
   return N;
 }
@@ -132,8 +134,8 @@ double closure_residual(const ExplicitBSpline& N, const VectorXd& X) {
   const int n = N.degree;
   const Index s = N.breaks.size() - 1;
   const auto m_last = std::count(X.data(), X.data() + X.size(), X(X.size() - 1));
-  const VectorXd end =
-      shift_taylor(VectorXd(N.taylor.row(s - 1).transpose()), N.breaks(s) - N.breaks(s - 1));
+  VectorXd end = N.taylor.row(s - 1).transpose();
+  shift_taylor(end, N.breaks(s) - N.breaks(s - 1));
   double r = 0;
   for (int q = 0; q <= n - m_last; ++q)
     r = std::max(r, std::abs(end(q)) / std::max(1e-300, N.taylor.col(q).cwiseAbs().maxCoeff()));
@@ -158,7 +160,7 @@ double evaluate(const ExplicitBSpline& N, double x, int deriv) {
 VectorXd theorem1_y(const VectorXd& X, int n) {
   require_simple(X, n, "theorem1_y");
   // N^(n-1) = sum_j a_j N_{j,1}: the hat N_{j,1} peaks at X_{j+1}, so y_k = a_{k-1}.
-  return derivative_coefficients(X, n)[n - 1].cast<double>();
+  return derivative_coefficients(X, n).row(n - 1).head(n).transpose().cast<double>();
 }
 
 VectorXd theorem1_y_solve(const VectorXd& X, int n) {
