@@ -1,0 +1,10 @@
+#pragma once
+// Subcommands of the interlin executable. Each returns the process exit status:
+// 0 success, 1 bad input or failed output (one error line on stderr), 2 wrong usage.
+
+namespace interlin::cli {
+
+int run_loft(int argc, const char* const* argv);
+extern const char* const kLoftHelp;
+
+} // namespace interlin::cli

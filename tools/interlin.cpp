@@ -1,0 +1,43 @@
+// interlin: spline-interlineation surface reconstruction, command-line entry point.
+#include "commands.h"
+
+#include <cstring>
+#include <iostream>
+
+namespace {
+
+const char* const kHelp = R"(interlin - spline-interlineation surface reconstruction
+
+Usage:
+  interlin loft SECTIONS.csv -o OUT [-o OUT ...] [options]
+      Closed blade sections -> one B-spline surface through every section exactly;
+      writes meshes (.stl .obj .ply .off), CAD (.igs .json) and a preview (.png).
+  interlin loft SECTIONS.csv --holdout K
+      Accuracy study: loft every K-th section, measure the distance of the others.
+  interlin COMMAND --help     options of a command
+  interlin --version
+
+Exit status: 0 success, 1 bad input or failed output, 2 wrong usage.
+)";
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << kHelp;
+    return 2;
+  }
+  const char* cmd = argv[1];
+  if (!std::strcmp(cmd, "--help") || !std::strcmp(cmd, "-h") || !std::strcmp(cmd, "help")) {
+    std::cout << kHelp;
+    return 0;
+  }
+  if (!std::strcmp(cmd, "--version")) {
+    std::cout << "interlin " INTERLIN_VERSION "\n";
+    return 0;
+  }
+  if (!std::strcmp(cmd, "loft"))
+    return interlin::cli::run_loft(argc, argv);
+  std::cerr << "interlin: unknown command '" << cmd << "' (see interlin --help)\n";
+  return 2;
+}
