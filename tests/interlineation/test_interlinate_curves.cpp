@@ -1,6 +1,8 @@
 // Interlineation on a family of lines v = v_k: exact on every line, spline-accurate between.
 #include "interlin/interlineation/interlinate_curves.h"
 
+#include "support/test_support.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -66,13 +68,7 @@ TEST_CASE("Cubic interlineation converges with order 4 between the lines", "[int
     h.push_back(1.0 / (K - 1));
     err.push_back(e);
   }
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (size_t i = 0; i < h.size(); ++i) {
-    const double x = std::log(h[i]), y = std::log(err[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  const double n = static_cast<double>(h.size());
-  const double order = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double order = test::fitted_order(h, err);
   INFO("max errors " << err[0] << " " << err[1] << " " << err[2] << " " << err[3]);
   CHECK(order == Approx(4.0).margin(0.3)); // cubic spline interpolation in v: O(h^4)
 }

@@ -9,6 +9,9 @@
 #include "interlin/splines/bspline_curve.h"
 #include "interlin/splines/knot_insertion.h"
 
+#include "support/test_support.h"
+#include "support/test_surfaces.h"
+
 #include <catch2/catch.hpp>
 
 #include <cctype>
@@ -29,38 +32,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh directory per test case, removed afterwards.
-struct TempDir {
-  fs::path dir;
-  explicit TempDir(const std::string& name)
-      : dir(fs::temp_directory_path() /
-            ("interlin-iges-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
-};
-
-// Clamped knot vector on [a, b] with random interior knots (one of them doubled when possible).
-Eigen::VectorXd random_clamped_knots(int p, Eigen::Index n, double a, double b, std::mt19937& rng) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::vector<double> inner;
-  for (Eigen::Index k = 0; k < n - p - 1; ++k)
-    inner.push_back(a + (b - a) * (0.05 + 0.9 * unit(rng)));
-  std::sort(inner.begin(), inner.end());
-  if (inner.size() >= 3 && p >= 2)
-    inner[2] = inner[1]; // a double interior knot
-  Eigen::VectorXd t(n + p + 1);
-  for (int k = 0; k <= p; ++k) {
-    t(k) = a;
-    t(n + k) = b;
-  }
-  for (std::size_t k = 0; k < inner.size(); ++k)
-    t(p + 1 + static_cast<Eigen::Index>(k)) = inner[k];
-  return t;
-}
-
 // Random surface whose coordinates span many magnitudes (and a few awkward values), so the
 // round trip exercises exponents, signs and 17-digit mantissas.
 BSplineSurface random_surface(int pu, int pv, Eigen::Index nu, Eigen::Index nv, unsigned seed) {
@@ -72,8 +43,8 @@ BSplineSurface random_surface(int pu, int pv, Eigen::Index nu, Eigen::Index nv, 
   s.degree_v = pv;
   s.num_u = nu;
   s.num_v = nv;
-  s.knots_u = random_clamped_knots(pu, nu, -0.37, 2.9, rng);
-  s.knots_v = random_clamped_knots(pv, nv, 1.0 / 3.0, 1e5 + 0.1, rng);
+  s.knots_u = test::random_clamped_knots(rng, pu, nu, -0.37, 2.9, true);
+  s.knots_v = test::random_clamped_knots(rng, pv, nv, 1.0 / 3.0, 1e5 + 0.1, true);
   s.ctrl.resize(nu * nv, 3);
   for (Eigen::Index r = 0; r < s.ctrl.rows(); ++r)
     for (int c = 0; c < 3; ++c)
@@ -91,19 +62,7 @@ BSplineSurface random_surface(int pu, int pv, Eigen::Index nu, Eigen::Index nv, 
 // periodic_to_clamped, so the seam is C^2) swept linearly (degree 1) through 3 levels in z.
 BSplineSurface closed_tube_degree_3_1() {
   const int p = 3;
-  const Eigen::Index N = 8;
-  BSplineCurve circle;
-  circle.degree = p;
-  circle.periodic = true;
-  circle.knots.resize(N + 2 * p + 1);
-  for (Eigen::Index k = 0; k < circle.knots.size(); ++k)
-    circle.knots(k) = static_cast<double>(k - p) / static_cast<double>(N);
-  circle.ctrl.resize(N + p, 3);
-  for (Eigen::Index k = 0; k < N + p; ++k) {
-    const double a = 2.0 * M_PI * static_cast<double>(k % N) / static_cast<double>(N);
-    circle.ctrl.row(k) << 2.0 * std::cos(a), 2.0 * std::sin(a), 0.0;
-  }
-  const BSplineCurve clamped = periodic_to_clamped(circle, 0.0);
+  const BSplineCurve clamped = test::clamped_ring(0.0);
   BSplineSurface s;
   s.degree_u = p;
   s.degree_v = 1;
@@ -244,7 +203,7 @@ long replace_parameter(std::vector<std::string>& lines, long first_p, std::size_
 } // namespace
 
 TEST_CASE("IGES round trip is bit-exact for a random bicubic surface", "[iges]") {
-  TempDir tmp("bicubic");
+  test::TempDir tmp("iges-bicubic");
   const BSplineSurface s = random_surface(3, 3, 9, 7, 20240601u);
   const std::string path = tmp.file("bicubic.igs");
   write_iges(path, s);
@@ -252,7 +211,7 @@ TEST_CASE("IGES round trip is bit-exact for a random bicubic surface", "[iges]")
 }
 
 TEST_CASE("IGES round trip is bit-exact for a degree (3,1) closed surface", "[iges]") {
-  TempDir tmp("deg31");
+  test::TempDir tmp("iges-deg31");
   const BSplineSurface tube = closed_tube_degree_3_1();
   const std::string path = tmp.file("tube.igs");
   write_iges(path, tube, {LengthUnit::inch, "someone", "closed tube"});
@@ -267,7 +226,7 @@ TEST_CASE("IGES round trip is bit-exact for a degree (3,1) closed surface", "[ig
 }
 
 TEST_CASE("IGES file layout: 80 columns, sections, sequence numbers, Terminate counts", "[iges]") {
-  TempDir tmp("layout");
+  test::TempDir tmp("iges-layout");
   const BSplineSurface s = random_surface(3, 2, 6, 4, 99u);
   const std::string path = tmp.file("layout.igs");
   write_iges(path, s, {LengthUnit::mm, "Ada Lovelace", "first line\nsecond line"});
@@ -371,7 +330,7 @@ TEST_CASE("IGES reader accepts a foreign-style file with a transformation matrix
   // Written independently of write_iges: delimiters '/' and '#', D exponents, zero-padded
   // sequence numbers, CRLF line ends, a bilinear patch transformed by entity 124
   // (rotation by 90 degrees about z, then translation by (10, 20, 30)).
-  TempDir tmp("foreign");
+  test::TempDir tmp("iges-foreign");
   const std::string path = tmp.file("foreign.iges");
   auto line = [](std::string data, char section, int seq) {
     data.resize(72, ' ');
@@ -425,7 +384,7 @@ TEST_CASE("IGES reader accepts a foreign-style file with a transformation matrix
 }
 
 TEST_CASE("IGES reader reports malformed files with file and line", "[iges]") {
-  TempDir tmp("bad");
+  test::TempDir tmp("iges-bad");
   const BSplineSurface s = random_surface(3, 3, 5, 5, 5u);
   const std::string good = tmp.file("good.igs");
   write_iges(good, s);
@@ -520,21 +479,21 @@ TEST_CASE("IGES reader reports malformed files with file and line", "[iges]") {
 }
 
 TEST_CASE("write_iges failures leave no file behind", "[iges]") {
-  TempDir tmp("fail");
+  test::TempDir tmp("iges-fail");
   const BSplineSurface s = random_surface(3, 3, 5, 5, 1u);
   // Missing directory.
   CHECK_THROWS_AS(write_iges(tmp.file("missing/x.igs"), s), std::runtime_error);
-  CHECK_FALSE(fs::exists(tmp.dir / "missing"));
+  CHECK_FALSE(fs::exists(tmp.path() / "missing"));
   // The target is a directory: the final rename fails, the temporary file is removed.
-  fs::create_directories(tmp.dir / "taken.igs");
+  fs::create_directories(tmp.path() / "taken.igs");
   CHECK_THROWS_AS(write_iges(tmp.file("taken.igs"), s), std::runtime_error);
   // An invalid surface is a programming error, detected before anything is written.
   BSplineSurface broken = s;
   broken.ctrl(0, 0) = std::nan("");
   CHECK_THROWS_AS(write_iges(tmp.file("broken.igs"), broken), std::invalid_argument);
   std::vector<std::string> left;
-  for (const auto& entry : fs::directory_iterator(tmp.dir))
+  for (const auto& entry : fs::directory_iterator(tmp.path()))
     left.push_back(entry.path().filename().string());
   CHECK(left == std::vector<std::string>{"taken.igs"});
-  CHECK(fs::is_directory(tmp.dir / "taken.igs"));
+  CHECK(fs::is_directory(tmp.path() / "taken.igs"));
 }

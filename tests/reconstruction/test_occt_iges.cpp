@@ -16,6 +16,9 @@
 #include "interlin/splines/bspline_surface.h"
 #include "interlin/splines/knot_insertion.h"
 
+#include "support/test_support.h"
+#include "support/test_surfaces.h"
+
 #include <catch2/catch.hpp>
 
 #include <Eigen/Geometry>
@@ -49,18 +52,6 @@ using namespace interlin;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct OcctTempDir {
-  fs::path dir;
-  explicit OcctTempDir(const std::string& name)
-      : dir(fs::temp_directory_path() /
-            ("interlin-occt-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~OcctTempDir() { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
-};
 
 struct OcctResult {
   int faces = 0;
@@ -162,20 +153,7 @@ void check_same_parametrisation(const BSplineSurface& s, const Handle(Geom_BSpli
 // wobble, clamped by periodic_to_clamped so the seam is C2), swept along z with degree `pv`.
 BSplineSurface tube(int pv) {
   const int p = 3;
-  const Eigen::Index N = 8;
-  BSplineCurve ring;
-  ring.degree = p;
-  ring.periodic = true;
-  ring.knots.resize(N + 2 * p + 1);
-  for (Eigen::Index k = 0; k < ring.knots.size(); ++k)
-    ring.knots(k) = static_cast<double>(k - p) / static_cast<double>(N);
-  ring.ctrl.resize(N + p, 3);
-  for (Eigen::Index k = 0; k < N + p; ++k) {
-    const double a = 2.0 * M_PI * static_cast<double>(k % N) / static_cast<double>(N);
-    const double r = 2.0 + 0.3 * std::cos(3.0 * a);
-    ring.ctrl.row(k) << r * std::cos(a), r * std::sin(a), 0.0;
-  }
-  const BSplineCurve closed = periodic_to_clamped(ring, 0.0);
+  const BSplineCurve closed = test::clamped_ring(0.3);
   BSplineSurface s;
   s.degree_u = p;
   s.degree_v = pv;
@@ -199,7 +177,7 @@ BSplineSurface tube(int pv) {
 } // namespace
 
 TEST_CASE("OpenCASCADE reads our IGES as one B-spline face with the same geometry", "[occt]") {
-  OcctTempDir tmp("bicubic");
+  test::TempDir tmp("occt-bicubic");
   const double size = 100.0;
   const BSplineSurface s = random_bicubic(9, 7, size, 777u);
   const std::string path = tmp.file("bicubic.igs");
@@ -237,7 +215,7 @@ TEST_CASE("OpenCASCADE reads our IGES as one B-spline face with the same geometr
 }
 
 TEST_CASE("OpenCASCADE applies the IGES unit flag as documented", "[occt]") {
-  OcctTempDir tmp("units");
+  test::TempDir tmp("occt-units");
   const double size = 2.0;
   const BSplineSurface s = random_bicubic(5, 6, size, 31u);
   const std::string path = tmp.file("metres.igs");
@@ -262,7 +240,7 @@ TEST_CASE("OpenCASCADE applies the IGES unit flag as documented", "[occt]") {
 }
 
 TEST_CASE("OpenCASCADE reads a closed_u tube as one closed face", "[occt]") {
-  OcctTempDir tmp("tube");
+  test::TempDir tmp("occt-tube");
   for (int pv : {1, 3}) {
     const BSplineSurface s = tube(pv);
     const std::string path = tmp.file("tube.igs");
@@ -285,7 +263,7 @@ TEST_CASE("OpenCASCADE projections give the distances known by construction", "[
   // [-0.02 L, 0.02 L]. Its principal curvature radii exceed ~0.25 L, so the point
   // q = S(u, v) + d n(u, v) with |d| <= 0.05 L and (u, v) inside the domain has S(u, v) as its
   // closest surface point and distance exactly |d|.
-  OcctTempDir tmp("project");
+  test::TempDir tmp("occt-project");
   const double L = 50.0;
   const Eigen::Index n = 8;
   std::mt19937 rng(2024u);

@@ -1,5 +1,7 @@
 #include "interlin/reconstruction/preview.h"
 
+#include "support/test_support.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -76,17 +78,6 @@ std::string read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
-
-// A fresh empty directory under the system temp directory, removed on destruction.
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / ("interlin-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 // Uniform background (top == bottom) whose 8-bit value is exact: 0.8*255 = 204, 0.6*255 = 153,
 // 0.4*255 = 102.
@@ -285,8 +276,8 @@ TEST_CASE("write_png round-trips through libpng", "[preview]") {
   o.width = 97; // odd sizes: no row padding assumptions
   o.height = 61;
   const Image im = render_preview(V, F, {}, o);
-  TempDir dir("preview-png");
-  const std::string path = (dir.path / "sphere.png").string();
+  test::TempDir dir("preview-png");
+  const std::string path = (dir.path() / "sphere.png").string();
   write_png(path, im);
 
   png_image png{};
@@ -300,19 +291,19 @@ TEST_CASE("write_png round-trips through libpng", "[preview]") {
   CHECK(buffer == im.rgb);
 
   // write_preview_png writes the same bytes as render_preview + write_png.
-  const std::string path2 = (dir.path / "sphere2.png").string();
+  const std::string path2 = (dir.path() / "sphere2.png").string();
   write_preview_png(path2, V, F, {}, o);
   CHECK(read_bytes(path2) == read_bytes(path));
   // Only the two targets exist: no temporary files left behind.
-  CHECK(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator{}) == 2);
+  CHECK(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator{}) == 2);
 }
 
 TEST_CASE("write_png into a missing directory throws and leaves no file", "[preview]") {
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;
   box(1, 2, 3, V, F);
-  TempDir dir("preview-missing");
-  const fs::path target = dir.path / "missing" / "out.png";
+  test::TempDir dir("preview-missing");
+  const fs::path target = dir.path() / "missing" / "out.png";
   const Image im = render_preview(V, F, {}, small_options());
   try {
     write_png(target.string(), im);
@@ -322,7 +313,7 @@ TEST_CASE("write_png into a missing directory throws and leaves no file", "[prev
   }
   CHECK_THROWS_AS(write_preview_png(target.string(), V, F), std::runtime_error);
   CHECK(!fs::exists(target));
-  CHECK(fs::is_empty(dir.path));
+  CHECK(fs::is_empty(dir.path()));
 }
 
 TEST_CASE("render_preview rejects bad input", "[preview]") {

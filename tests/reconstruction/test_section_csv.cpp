@@ -5,6 +5,8 @@
 #include "interlin/reconstruction/input_error.h"
 #include "interlin/reconstruction/section_csv.h"
 
+#include "support/test_support.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -60,19 +62,6 @@ std::vector<std::string> ids(const SectionSet& s) {
     r.push_back(x.id);
   return r;
 }
-
-// A fresh directory removed (with its content) when the test ends.
-struct TempDir {
-  std::filesystem::path path;
-  TempDir() {
-    std::random_device rd;
-    path = std::filesystem::temp_directory_path() /
-           ("interlin-csv-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
 
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
@@ -260,11 +249,11 @@ TEST_CASE("comment lines are skipped and do not separate plain sections", "[csv]
 }
 
 TEST_CASE("errors: file access and empty content", "[csv]") {
-  TempDir dir;
+  test::TempDir dir("csv");
   CHECK_THROWS_WITH(read_sections(dir.file("missing.csv")),
                     dir.file("missing.csv") + ": cannot open: No such file or directory");
-  CHECK_THROWS_WITH(read_sections(dir.path.string()),
-                    dir.path.string() + ": cannot open: Is a directory");
+  CHECK_THROWS_WITH(read_sections(dir.path().string()),
+                    dir.path().string() + ": cannot open: Is a directory");
   CHECK_THROWS_AS(read_sections(dir.file("missing.csv")), InputError);
   write_text(dir.file("empty.csv"), "");
   CHECK_THROWS_WITH(read_sections(dir.file("empty.csv")),
@@ -410,7 +399,7 @@ TEST_CASE("sections are ordered numerically when every id is a number, else lexi
 }
 
 TEST_CASE("write_sections_csv then read_sections is bit-exact", "[csv]") {
-  TempDir dir;
+  test::TempDir dir("csv");
   std::mt19937_64 rng(37);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<int> expo(-300, 300);
@@ -458,7 +447,7 @@ TEST_CASE("write_sections_csv then read_sections is bit-exact", "[csv]") {
     CHECK_THROWS_AS(write_sections_csv(p2, bad), std::invalid_argument);
     CHECK_THROWS_AS(write_sections_csv(dir.file("no-such-dir/x.csv"), sections),
                     std::runtime_error);
-    CHECK(std::distance(std::filesystem::directory_iterator(dir.path),
+    CHECK(std::distance(std::filesystem::directory_iterator(dir.path()),
                         std::filesystem::directory_iterator()) == 1); // only out.csv
   }
 }

@@ -5,6 +5,9 @@
 #include "interlin/reconstruction/input_error.h"
 #include "interlin/reconstruction/surface_json.h"
 
+#include "support/test_support.h"
+#include "support/test_surfaces.h"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -24,45 +27,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct JsonTempDir {
-  fs::path dir;
-  explicit JsonTempDir(const std::string& name)
-      : dir(fs::temp_directory_path() /
-            ("interlin-json-" + name + "-" + std::to_string(::getpid()))) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~JsonTempDir() { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
-};
-
 // Random clamped surface; coordinates over many magnitudes plus awkward values.
 BSplineSurface random_json_surface(int pu, int pv, Eigen::Index nu, Eigen::Index nv,
                                    unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::uniform_int_distribution<int> exponent(-15, 15);
-  auto knots = [&](int p, Eigen::Index n, double a, double b) {
-    std::vector<double> inner;
-    for (Eigen::Index k = 0; k < n - p - 1; ++k)
-      inner.push_back(a + (b - a) * (0.05 + 0.9 * unit(rng)));
-    std::sort(inner.begin(), inner.end());
-    Eigen::VectorXd t(n + p + 1);
-    for (int k = 0; k <= p; ++k) {
-      t(k) = a;
-      t(n + k) = b;
-    }
-    for (std::size_t k = 0; k < inner.size(); ++k)
-      t(p + 1 + static_cast<Eigen::Index>(k)) = inner[k];
-    return t;
-  };
   BSplineSurface s;
   s.degree_u = pu;
   s.degree_v = pv;
   s.num_u = nu;
   s.num_v = nv;
-  s.knots_u = knots(pu, nu, 0.1, 0.7);
-  s.knots_v = knots(pv, nv, -3.0, 1e10);
+  s.knots_u = test::random_clamped_knots(rng, pu, nu, 0.1, 0.7);
+  s.knots_v = test::random_clamped_knots(rng, pv, nv, -3.0, 1e10);
   s.ctrl.resize(nu * nv, 3);
   for (Eigen::Index r = 0; r < s.ctrl.rows(); ++r)
     for (int c = 0; c < 3; ++c)
@@ -119,7 +96,7 @@ std::string json_error(const std::string& path, const std::string& text) {
 } // namespace
 
 TEST_CASE("Surface JSON round trip is bit-exact and keeps meta", "[json]") {
-  JsonTempDir tmp("roundtrip");
+  test::TempDir tmp("json-roundtrip");
   const std::string path = tmp.file("surface.json");
   const BSplineSurface s = random_json_surface(3, 2, 8, 5, 4242u);
   const std::map<std::string, std::string> meta = {
@@ -157,7 +134,7 @@ TEST_CASE("Surface JSON round trip is bit-exact and keeps meta", "[json]") {
 
 TEST_CASE("Surface JSON reads the documented layout and keeps non-string meta as JSON text",
           "[json]") {
-  JsonTempDir tmp("layout");
+  test::TempDir tmp("json-layout");
   const std::string path = tmp.file("m.json");
   const std::string text =
       minimal({{"meta", "{\"a\": \"x\", \"tol\": 0.5, \"ok\": true}"}, {"unknown_key", "[1, 2]"}});
@@ -175,7 +152,7 @@ TEST_CASE("Surface JSON reads the documented layout and keeps non-string meta as
 }
 
 TEST_CASE("Surface JSON errors name the problem", "[json]") {
-  JsonTempDir tmp("errors");
+  test::TempDir tmp("json-errors");
   const std::string path = tmp.file("bad.json");
   auto err = [&](const std::map<std::string, std::string>& replace) {
     return json_error(path, minimal(replace));
@@ -232,16 +209,16 @@ TEST_CASE("Surface JSON errors name the problem", "[json]") {
 }
 
 TEST_CASE("write_surface_json failures leave no file behind", "[json]") {
-  JsonTempDir tmp("fail");
+  test::TempDir tmp("json-fail");
   const BSplineSurface s = random_json_surface(2, 2, 4, 4, 3u);
   CHECK_THROWS_AS(write_surface_json(tmp.file("missing/s.json"), s), std::runtime_error);
-  fs::create_directories(tmp.dir / "taken.json");
+  fs::create_directories(tmp.path() / "taken.json");
   CHECK_THROWS_AS(write_surface_json(tmp.file("taken.json"), s), std::runtime_error);
   BSplineSurface broken = s;
   broken.knots_u(0) = 5.0; // decreasing knots: a programming error
   CHECK_THROWS_AS(write_surface_json(tmp.file("broken.json"), broken), std::invalid_argument);
   std::vector<std::string> left;
-  for (const auto& entry : fs::directory_iterator(tmp.dir))
+  for (const auto& entry : fs::directory_iterator(tmp.path()))
     left.push_back(entry.path().filename().string());
   CHECK(left == std::vector<std::string>{"taken.json"});
 }

@@ -5,8 +5,10 @@
 #include "interlin/splines/bspline_surface.h"
 #include "interlin/splines/knot_insertion.h"
 
+#include "support/test_support.h"
 #include <Eigen/Geometry>
 #include <algorithm>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -222,15 +224,6 @@ void check_disk(const MatrixXi& T, Index n) {
   }
   CHECK(loop_edges == n);
   CHECK(bad == 0);
-}
-
-// A fresh directory per test and process.
-std::filesystem::path scratch_dir(const std::string& name) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("interlin_test_mesh_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
 }
 
 } // namespace
@@ -663,7 +656,8 @@ TEST_CASE("write_mesh and read_mesh round trip every format", "[mesh]") {
   MatrixXd V;
   MatrixXi F;
   surface_mesh(to_piecewise(w.surface), o, V, F);
-  const auto dir = scratch_dir("roundtrip");
+  const test::TempDir scratch("mesh-roundtrip");
+  const auto& dir = scratch.path();
   for (const std::string ext : {".stl", ".obj", ".ply", ".off", ".STL"}) {
     INFO(ext);
     const std::string path = (dir / ("tube" + ext)).string();
@@ -693,7 +687,6 @@ TEST_CASE("write_mesh and read_mesh round trip every format", "[mesh]") {
       CHECK(Fr == F); // same vertex order and corner order
     }
   }
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("write_mesh errors leave no file", "[mesh]") {
@@ -701,7 +694,8 @@ TEST_CASE("write_mesh errors leave no file", "[mesh]") {
   V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
   MatrixXi F(1, 3);
   F << 0, 1, 2;
-  const auto dir = scratch_dir("errors");
+  const test::TempDir scratch("mesh-errors");
+  const auto& dir = scratch.path();
   const std::string unknown = (dir / "mesh.xyz").string();
   try {
     write_mesh(unknown, V, F);
@@ -722,5 +716,4 @@ TEST_CASE("write_mesh errors leave no file", "[mesh]") {
   CHECK_FALSE(std::filesystem::exists(missing));
   CHECK(std::filesystem::is_empty(dir)); // no temporary left behind either
   CHECK_THROWS_AS(read_mesh(missing, V, F), std::runtime_error);
-  std::filesystem::remove_all(dir);
 }

@@ -3,6 +3,8 @@
 #include "interlin/splines/cox_de_boor.h"
 #include "interlin/splines/knots.h"
 
+#include "support/test_surfaces.h"
+
 #include <catch2/catch.hpp>
 #include <random>
 
@@ -10,24 +12,6 @@ using namespace interlin;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-
-namespace {
-
-VectorXd clamped(std::mt19937& rng, int p, Index n) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  VectorXd t(n + p + 1);
-  t.head(p + 1).setConstant(-0.5);
-  t.tail(p + 1).setConstant(2.0);
-  std::vector<double> in;
-  for (Index i = 0; i < n - p - 1; ++i)
-    in.push_back(-0.5 + 2.5 * unit(rng));
-  std::sort(in.begin(), in.end());
-  for (size_t i = 0; i < in.size(); ++i)
-    t(p + 1 + Index(i)) = in[i];
-  return t;
-}
-
-} // namespace
 
 TEST_CASE("Surface explicit form equals the Cox–de Boor tensor sum (values and derivatives)",
           "[splines][surface][cox]") {
@@ -39,8 +23,8 @@ TEST_CASE("Surface explicit form equals the Cox–de Boor tensor sum (values and
     s.degree_v = pv;
     s.num_u = pu + 5;
     s.num_v = pv + 3;
-    s.knots_u = clamped(rng, pu, s.num_u);
-    s.knots_v = clamped(rng, pv, s.num_v);
+    s.knots_u = test::random_clamped_knots(rng, pu, s.num_u, -0.5, 2.0);
+    s.knots_v = test::random_clamped_knots(rng, pv, s.num_v, -0.5, 2.0);
     s.ctrl = MatrixXd::Random(s.num_u * s.num_v, 3);
     const PiecewiseSurface ps = to_piecewise(s);
     for (int k = 0; k < 100; ++k) {

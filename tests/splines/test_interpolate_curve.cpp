@@ -3,6 +3,8 @@
 #include "interlin/splines/knots.h"
 #include "interlin/splines/parameterization.h"
 
+#include "support/test_support.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -21,17 +23,6 @@ MatrixXd ellipse_points(Index N, double a, double b, double wobble) {
     P.row(i) << a * std::cos(th), b * std::sin(th), 0.1 * std::sin(2 * th);
   }
   return P;
-}
-
-// Least-squares slope of log(err) against log(h): the observed convergence order.
-double fitted_order(const std::vector<double>& h, const std::vector<double>& err) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(h.size());
-  for (size_t i = 0; i < h.size(); ++i) {
-    const double x = std::log(h[i]), y = std::log(err[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 } // namespace
@@ -141,7 +132,7 @@ TEST_CASE("Closed cubic interpolation of an ellipse converges with order 4", "[s
     h.push_back(1.0 / N);
     err.push_back(e);
   }
-  const double order = fitted_order(h, err);
+  const double order = test::fitted_order(h, err);
   INFO("errors " << err[0] << " " << err[1] << " " << err[2] << " " << err[3] << " order "
                  << order);
   CHECK(order == Approx(4.0).margin(0.15)); // cubic interpolation: O(h^4)

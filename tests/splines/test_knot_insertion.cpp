@@ -3,6 +3,8 @@
 #include "interlin/splines/knot_insertion.h"
 #include "interlin/splines/parameterization.h"
 
+#include "support/test_surfaces.h"
+
 #include <catch2/catch.hpp>
 #include <random>
 
@@ -14,17 +16,9 @@ using Eigen::VectorXd;
 namespace {
 
 BSplineCurve random_clamped(std::mt19937& rng, int p, Index n) {
-  std::uniform_real_distribution<double> unit(0, 1);
   BSplineCurve c;
   c.degree = p;
-  c.knots.resize(n + p + 1);
-  c.knots.head(p + 1).setZero();
-  c.knots.tail(p + 1).setOnes();
-  VectorXd inner(n - p - 1);
-  for (Index i = 0; i < inner.size(); ++i)
-    inner(i) = unit(rng);
-  std::sort(inner.data(), inner.data() + inner.size());
-  c.knots.segment(p + 1, inner.size()) = inner;
+  c.knots = test::random_clamped_knots(rng, p, n, 0.0, 1.0);
   c.ctrl = MatrixXd::Random(n, 3);
   return c;
 }

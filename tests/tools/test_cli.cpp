@@ -1,5 +1,7 @@
 // The interlin executable as a user meets it: outputs, summaries, and one clear error line with
 // a non-zero exit and no output file for every kind of bad input.
+#include "support/test_support.h"
+
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
@@ -20,22 +22,6 @@ struct Run {
   std::string out, err;
 };
 
-// A fresh directory per test case, removed at the end.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("interlin_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter()++));
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-  static int& counter() {
-    static int c = 0;
-    return c;
-  }
-};
-
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream s;
@@ -43,7 +29,7 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
-Run run(const TempDir& dir, const std::string& args) {
+Run run(const interlin::test::TempDir& dir, const std::string& args) {
   const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
   const std::string cmd = std::string(INTERLIN_CLI) + " " + args + " >" + out + " 2>" + err;
   const int raw = std::system(cmd.c_str());
@@ -73,13 +59,14 @@ std::string good_csv() {
 
 // Exactly one line on stderr, starting with "interlin: " and containing `what`; exit 1; the
 // directory holds nothing but the input file(s) (no output, no temporary).
-void expect_one_error(const TempDir& d, const Run& r, const std::string& what, size_t files = 1) {
+void expect_one_error(const interlin::test::TempDir& d, const Run& r, const std::string& what,
+                      size_t files = 1) {
   INFO("stderr: " << r.err);
   CHECK(r.status == 1);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK_THAT(r.err, Catch::StartsWith("interlin: ") && Catch::Contains(what));
   size_t n = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d.path))
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d.path()))
     ++n;
   CHECK(n == files);
 }
@@ -87,7 +74,7 @@ void expect_one_error(const TempDir& d, const Run& r, const std::string& what, s
 } // namespace
 
 TEST_CASE("CLI: help and usage errors", "[cli]") {
-  TempDir d;
+  interlin::test::TempDir d("cli");
   Run r = run(d, "--help");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("interlin loft"));
@@ -114,7 +101,7 @@ TEST_CASE("CLI: help and usage errors", "[cli]") {
 }
 
 TEST_CASE("CLI: the main job writes every output and reports exactness", "[cli]") {
-  TempDir d;
+  interlin::test::TempDir d("cli");
   const Run r = run(d, "loft " INTERLIN_DATA_DIR "/rotor37/sections.csv -o " + (d / "b.stl") +
                            " -o " + (d / "b.igs") + " -o " + (d / "b.json") + " -o " +
                            (d / "b.png") + " -o " + (d / "b.obj") + " --units cm --cap -q");
@@ -127,7 +114,7 @@ TEST_CASE("CLI: the main job writes every output and reports exactness", "[cli]"
   CHECK(slurp(d / "b.png").substr(1, 3) == "PNG");
   CHECK(slurp(d / "b.igs").find("128,") != std::string::npos);
   // Deterministic: the same run gives the same bytes.
-  TempDir e;
+  interlin::test::TempDir e("cli");
   REQUIRE(run(e, "loft " INTERLIN_DATA_DIR "/rotor37/sections.csv -o " + (e / "b.stl") + " -o " +
                      (e / "b.png") + " --cap -q")
               .status == 0);
@@ -136,7 +123,7 @@ TEST_CASE("CLI: the main job writes every output and reports exactness", "[cli]"
 }
 
 TEST_CASE("CLI: hold-out study prints per-section and overall distances", "[cli]") {
-  TempDir d;
+  interlin::test::TempDir d("cli");
   const Run r = run(d, "loft " INTERLIN_DATA_DIR "/rotor37/sections.csv --holdout 2 -o " +
                            (d / "h.csv") + " -q");
   REQUIRE(r.status == 0);
@@ -150,7 +137,7 @@ TEST_CASE("CLI: hold-out study prints per-section and overall distances", "[cli]
 }
 
 TEST_CASE("CLI: bad input gives one error line naming file and line, exit 1, no output", "[cli]") {
-  TempDir d;
+  interlin::test::TempDir d("cli");
   const std::string in = d / "s.csv", out = " -o " + (d / "o.stl") + " -o " + (d / "o.igs");
   struct Case {
     std::string name, content, expect;
@@ -196,7 +183,7 @@ TEST_CASE("CLI: bad input gives one error line naming file and line, exit 1, no 
 }
 
 TEST_CASE("CLI: repeated points are dropped with a warning naming the line", "[cli]") {
-  TempDir d;
+  interlin::test::TempDir d("cli");
   // No index column: file order. Line 9 repeats line 8 (section 1, second point).
   std::string csv = "section,x,y,z\n";
   const char* profile[] = {"1,0", "0.5,0.8", "-0.5,0.8", "-1,0", "-0.5,-0.8", "0.5,-0.8"};
