@@ -1,0 +1,34 @@
+#pragma once
+// OpenCASCADE baseline loft shared by the OCCT benchmarks and occt_holdout: each blade section
+// becomes a closed periodic B-spline through its points (GeomAPI_Interpolate, periodic), an edge
+// and a wire; BRepOffsetAPI_ThruSections (isSolid = false, ruled = false, default settings)
+// lofts the wires. Include only from OCCT translation units (heavy headers).
+//
+// One setting differs from the defaults: CheckCompatibility(false). With the default (true),
+// BRepFill_CompatibleWires treats closed C1 wires by its "polar method", which needs each wire to
+// be planar; the Rotor 37 sections are not (they lie on stream surfaces), and OCCT 7.6 throws
+// "BRepFill :: profiles are inconsistent". The sections already correspond (same point count,
+// orientation and start point, one edge each), so the compatibility pass has nothing to do.
+
+#include <Eigen/Core>
+
+#include <TopoDS_Shape.hxx>
+#include <TopoDS_Wire.hxx>
+
+#include <vector>
+
+namespace interlin::bench {
+
+// Closed wire of one section.
+// Inputs:  P  #P by 3 profile points (closing edge implicit, no repeated point)
+// Output:  a wire with one edge on the periodic interpolating B-spline through P
+// Throws std::runtime_error if OCCT's interpolation or edge construction fails.
+TopoDS_Wire occt_section_wire(const Eigen::MatrixXd& P);
+
+// ThruSections of the wires, in order (isSolid = false, ruled = false, pres3d = 1e-6,
+// CheckCompatibility(check_compatibility), everything else default).
+// Throws std::runtime_error if the build fails, Standard_Failure if OCCT throws.
+TopoDS_Shape occt_thru_sections(const std::vector<TopoDS_Wire>& wires,
+                                bool check_compatibility = false);
+
+} // namespace interlin::bench
