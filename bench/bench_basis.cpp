@@ -191,20 +191,28 @@ void BM_curve_point_piecewise(benchmark::State& st) {
 }
 BENCHMARK(BM_curve_point_piecewise)->Arg(2)->Arg(3)->Arg(5)->Unit(benchmark::kMillisecond);
 
-// Curve points as the Cox–de Boor sum: basis values by the recursion, then sum_r N_r P_r.
-void BM_curve_point_cox_de_boor(benchmark::State& st) {
-  const BasisFixture& f = basis_fixture(static_cast<int>(st.range(0)));
+// Curve points as sum_r N_r P_r with the basis values N_r(u) from `basis_at(u, span)`.
+template <class BasisAt>
+void curve_point_basis_sum(benchmark::State& st, const BasisFixture& f, BasisAt basis_at) {
   const int p = f.degree;
   for (auto _ : st) {
     Eigen::MatrixXd X(kEvaluations, 3);
     for (Index i = 0; i < kEvaluations; ++i) {
       Index k = 0;
-      const Eigen::MatrixXd N = cox_de_boor_derivatives(f.knots, p, f.num_ctrl, f.u(i), 0, &k);
+      const Eigen::MatrixXd N = basis_at(f.u(i), k);
       X.row(i) = N.row(0) * f.curve.ctrl.middleRows(k - p, p + 1);
     }
     benchmark::DoNotOptimize(X.data());
   }
   finish(st);
+}
+
+// Curve points as the Cox–de Boor sum: basis values by the recursion, then sum_r N_r P_r.
+void BM_curve_point_cox_de_boor(benchmark::State& st) {
+  const BasisFixture& f = basis_fixture(static_cast<int>(st.range(0)));
+  curve_point_basis_sum(st, f, [&](double u, Index& k) {
+    return cox_de_boor_derivatives(f.knots, f.degree, f.num_ctrl, u, 0, &k);
+  });
 }
 BENCHMARK(BM_curve_point_cox_de_boor)->Arg(2)->Arg(3)->Arg(5)->Unit(benchmark::kMillisecond);
 
@@ -212,17 +220,8 @@ BENCHMARK(BM_curve_point_cox_de_boor)->Arg(2)->Arg(3)->Arg(5)->Unit(benchmark::k
 // separates the gain of the per-span basis from that of the per-curve power form.
 void BM_curve_point_explicit_basis_sum(benchmark::State& st) {
   const BasisFixture& f = basis_fixture(static_cast<int>(st.range(0)));
-  const int p = f.degree;
-  for (auto _ : st) {
-    Eigen::MatrixXd X(kEvaluations, 3);
-    for (Index i = 0; i < kEvaluations; ++i) {
-      Index k = 0;
-      const Eigen::MatrixXd N = basis_derivatives(f.basis, f.u(i), 0, &k);
-      X.row(i) = N.row(0) * f.curve.ctrl.middleRows(k - p, p + 1);
-    }
-    benchmark::DoNotOptimize(X.data());
-  }
-  finish(st);
+  curve_point_basis_sum(st, f,
+                        [&](double u, Index& k) { return basis_derivatives(f.basis, u, 0, &k); });
 }
 BENCHMARK(BM_curve_point_explicit_basis_sum)->Arg(2)->Arg(3)->Arg(5)->Unit(benchmark::kMillisecond);
 
