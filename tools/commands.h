@@ -7,4 +7,7 @@ namespace interlin::cli {
 int run_loft(int argc, const char* const* argv);
 extern const char* const kLoftHelp;
 
+int run_profile(int argc, const char* const* argv);
+extern const char* const kProfileHelp;
+
 } // namespace interlin::cli

@@ -14,6 +14,9 @@ Usage:
       writes meshes (.stl .obj .ply .off), CAD (.igs .json) and a preview (.png).
   interlin loft SECTIONS.csv --holdout K
       Accuracy study: loft every K-th section, measure the distance of the others.
+  interlin profile PARAMS.json -o SECTIONS.csv [--joint g2|g3] [--curvature K.csv]
+      13 cascade parameters (+ optional span law) -> turbine blade profile(s) as a section
+      CSV that `interlin loft` accepts (seed 004, natural parametrization).
   interlin COMMAND --help     options of a command
   interlin --version
 
@@ -38,6 +41,8 @@ int main(int argc, char** argv) {
   }
   if (!std::strcmp(cmd, "loft"))
     return interlin::cli::run_loft(argc, argv);
+  if (!std::strcmp(cmd, "profile"))
+    return interlin::cli::run_profile(argc, argv);
   std::cerr << "interlin: unknown command '" << cmd << "' (see interlin --help)\n";
   return 2;
 }

@@ -1,0 +1,42 @@
+#pragma once
+// Least-squares B-spline curve approximation with a smoothing weight and a user tolerance, for
+// noisy section data (seed 001 ch. 3: "the coefficients are found by least squares"; digest 001
+// §2.2 option (b), least squares with regularisation). Minimises
+//   (1/N) sum_i |C(u_i) - P_i|^2 + lambda * int |C''(u)|^2 du / L^2,
+// L the polyline length (so lambda is dimensionless), over the control points, open (clamped) or
+// closed (periodic, C^{p-1} at the seam).
+
+#include "interlin/splines/bspline_curve.h"
+
+namespace interlin {
+
+struct ApproximationOptions {
+  int degree = 3;
+  bool closed = false;
+  int num_ctrl = 0;     // distinct control points (the start when tolerance > 0);
+                        // 0 = max(degree + 1, 8)
+  double smoothing = 0; // lambda >= 0 (needs degree >= 2 when > 0)
+  double tolerance = 0; // > 0: double num_ctrl (up to #P) until the max deviation <= tolerance
+  double parameter_exponent = 1.0; // 1 chord length, 0.5 centripetal
+};
+
+struct Approximation {
+  BSplineCurve curve;
+  Eigen::VectorXd u;        // parameters of the points (#P), in the curve's domain
+  double max_deviation = 0; // max_i |C(u_i) - P_i|
+  double rms_deviation = 0;
+  Eigen::Index worst_point = 0;
+  bool met_tolerance = true; // false when the tolerance was not reached with #P control points
+};
+
+// Inputs: P #P by dim (consecutive points distinct; closed: do not repeat P_0), options.
+// Knots follow the data (Piegl & Tiller eq. 9.68-9.69 averaging; periodic: parameter quantiles),
+// so every knot span holds data. Throws std::invalid_argument for bad options (degree < 1,
+// degree >= #P, num_ctrl out of [degree+1, #P], negative smoothing, non-finite points) and
+// std::runtime_error when the normal equations are singular.
+Approximation approximate_curve(const Eigen::MatrixXd& P, const ApproximationOptions& options);
+
+// int |C''(u)|^2 du over the curve's domain (exact Gauss quadrature per span). Degree >= 2.
+double bending_energy(const BSplineCurve& c);
+
+} // namespace interlin
