@@ -2,7 +2,10 @@
 #include "cli_args.h"
 #include "commands.h"
 
+#include "interlin/interlineation/shape_diagnostics.h"
 #include "interlin/reconstruction/atomic_file.h"
+#include "interlin/reconstruction/guide_csv.h"
+#include "interlin/reconstruction/guided_loft.h"
 #include "interlin/reconstruction/holdout.h"
 #include "interlin/reconstruction/iges.h"
 #include "interlin/reconstruction/input_error.h"
@@ -16,6 +19,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -27,6 +31,7 @@ const char* const kLoftHelp =
     R"(interlin loft - closed sections -> B-spline surface through every section exactly
 
 Usage: interlin loft SECTIONS.csv -o OUT [-o OUT ...] [options]
+       interlin loft SECTIONS.csv --guides GUIDES.csv -o OUT [...]
 
 Input: a section file: CSV with header section,index,x,y,z (index optional, any column
 order) or plain x y z lines with blank lines between sections (docs/formats.md).
@@ -56,6 +61,12 @@ Options:
   --units mm|cm|m|in         unit label written to IGES (coordinates are not scaled)
   --view AZ,EL               preview camera: azimuth and elevation in degrees around the
                              span direction (default 45,25)
+  --guides FILE              guide lines (CSV guide,index,x,y,z; docs/formats.md): spanwise
+                             polylines (leading/trailing edge, any line on the surface); the
+                             surface is then a Gordon surface through the sections AND the
+                             guides exactly (crossings found and made compatible for you)
+  --guide-tolerance T        a guide must pass within T x bounding-box diagonal of every
+                             section (default 1e-3)
   --holdout K                study: loft sections 0, K, 2K, ... (and the last), report the
                              exact distance of the withheld sections to the surface
   --withhold I,J,...         study: withhold these section indices (0-based)
@@ -66,6 +77,8 @@ Examples:
   interlin loft data/rotor37/sections.csv -o out/rotor37.stl -o out/rotor37.igs --units cm
   interlin loft blade.csv -o blade.stl --cap --samples 600,200 --align le
   interlin loft data/rotor37/sections.csv --holdout 2 -o holdout.csv
+  interlin loft data/rotor37/sections.csv --guides edges.csv -o blade.igs --units cm
+  interlin loft data/rotor37/sections.csv --guides edges.csv --holdout 2
 )";
 
 namespace {
@@ -122,7 +135,7 @@ LengthUnit unit_of(const std::string& u) {
 // Per-point report: the deviation of the surface from each input point (loft) or the distance of
 // each withheld point (hold-out).
 void write_report(const std::string& path, const std::vector<Section>& all, const LoftResult& loft,
-                  const HoldoutResult* h) {
+                  const HoldoutResult* h, const GuidedLoftResult* guided, const GuideSet* gs) {
   write_file_atomically(path, [&](std::ostream& out) {
     out.precision(17);
     out << "section,index,line,x,y,z," << (h ? "distance" : "deviation") << "\n";
@@ -138,9 +151,18 @@ void write_report(const std::string& path, const std::vector<Section>& all, cons
       for (size_t k = 0; k < loft.sections.size(); ++k) {
         const PreparedSection& p = loft.sections[k];
         for (Eigen::Index i = 0; i < p.points.rows(); ++i) // report in input order
-          row(all[k], p.source[static_cast<size_t>(i)], loft.deviation[k](i));
+          if (p.source[static_cast<size_t>(i)] >= 0)       // not a crossing inserted by a guide
+            row(all[k], p.source[static_cast<size_t>(i)], loft.deviation[k](i));
       }
     }
+    if (guided) // the guides' own points, section column "guide:ID"
+      for (size_t l = 0; l < guided->guides.size(); ++l) {
+        const Guide& g = gs->guides[l];
+        for (Eigen::Index j = 0; j < g.points.rows(); ++j)
+          out << "guide:" << g.id << ',' << j << ',' << g.lines[static_cast<size_t>(j)] << ','
+              << g.points(j, 0) << ',' << g.points(j, 1) << ',' << g.points(j, 2) << ','
+              << guided->guides[l].input_deviation(j) << '\n';
+      }
   });
 }
 
@@ -163,6 +185,8 @@ int run_loft(int argc, const char* const* argv) {
                                      {"holdout", 0, true, false},
                                      {"withhold", 0, true, false},
                                      {"view", 0, true, false},
+                                     {"guides", 0, true, false},
+                                     {"guide-tolerance", 0, true, false},
                                      {"quiet", 'q', false, false},
                                      {"help", 'h', false, false}});
     if (a.has("help")) {
@@ -196,7 +220,17 @@ int run_loft(int argc, const char* const* argv) {
         unit_of(parse_choice("units", a.get("units", "mm"), {"mm", "cm", "m", "in"}));
     const auto [nu, nv] = parse_int_pair("samples", a.get("samples", "400,120"), 3, 100000);
     const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
-    const bool cap = a.has("cap"), quiet = a.has("quiet");
+    const bool cap = a.has("cap"), quiet = a.has("quiet"), with_guides = a.has("guides");
+    double guide_tolerance = 1e-3;
+    if (a.has("guide-tolerance")) {
+      const std::string t = a.get("guide-tolerance");
+      char* end = nullptr;
+      guide_tolerance = std::strtod(t.c_str(), &end);
+      if (t.empty() || *end != '\0' || !(guide_tolerance > 0) || !(guide_tolerance < 1))
+        throw UsageError("--guide-tolerance: expected a number in (0, 1), got '" + t + "'");
+      if (!with_guides)
+        throw UsageError("--guide-tolerance needs --guides");
+    }
     if (a.has("holdout") && a.has("withhold"))
       throw UsageError("--holdout and --withhold exclude each other");
     const bool study = a.has("holdout") || a.has("withhold");
@@ -221,6 +255,22 @@ int run_loft(int argc, const char* const* argv) {
       for (const std::string& w : set.warnings)
         std::cerr << "warning: " << w << "\n";
     const std::vector<Section>& all = set.sections;
+    GuideSet guide_set;
+    if (with_guides) {
+      progress("reading guides " + a.get("guides"));
+      guide_set = read_guides(a.get("guides"));
+    }
+    GuidedLoftOptions gopt;
+    gopt.loft = opt;
+    gopt.guide_tolerance = guide_tolerance;
+    GuidedLoftResult guided;
+    // The loft of a set of sections: with guides the Gordon surface, else the section loft.
+    const auto loft_of = [&](const std::vector<Section>& secs) {
+      if (!with_guides)
+        return loft_sections(secs, opt);
+      guided = guided_loft(secs, guide_set, gopt);
+      return guided.loft;
+    };
 
     HoldoutResult h;
     LoftResult loft;
@@ -237,11 +287,13 @@ int run_loft(int argc, const char* const* argv) {
                   }();
         progress("hold-out study: lofting " + std::to_string(all.size() - out.size()) +
                  " sections, measuring " + std::to_string(out.size()));
-        h = holdout_study(all, out, opt);
+        h = holdout_study(all, out, loft_of);
         loft = h.loft;
       } else {
-        progress("lofting " + std::to_string(all.size()) + " sections");
-        loft = loft_sections(all, opt);
+        progress(
+            "lofting " + std::to_string(all.size()) + " sections" +
+            (with_guides ? " with " + std::to_string(guide_set.guides.size()) + " guides" : ""));
+        loft = loft_of(all);
       }
     } catch (const std::invalid_argument& e) {
       throw_input_error(input, 0, e.what()); // a property of the file's sections
@@ -265,7 +317,29 @@ int run_loft(int argc, const char* const* argv) {
               << " seam)\n";
     std::cout << "  exactness    max |S(u_i,v_k) - P_i| = " << fmt(loft.max_deviation, 3) << " ("
               << fmt(loft.max_deviation / loft.bbox_diagonal, 3) << " x bbox diagonal "
-              << fmt(loft.bbox_diagonal) << ")\n";
+              << fmt(loft.bbox_diagonal) << ")" << (with_guides ? ", sections and guides" : "")
+              << "\n";
+    if (with_guides) {
+      long inserted = 0;
+      for (const PreparedSection& p : loft.sections)
+        for (Eigen::Index src : p.source)
+          inserted += src < 0;
+      std::cout << "  guides       " << guided.guides.size() << " (";
+      for (size_t l = 0; l < guided.guides.size(); ++l)
+        std::cout << (l ? ", " : "") << guided.guides[l].id
+                  << " at u = " << fmt(guided.guides[l].u);
+      std::cout << "), " << inserted << " crossing(s) inserted into sections\n";
+      std::cout << "  guide fit    max |S(u_l,v) - G_l(v)| = " << fmt(guided.max_guide_deviation, 3)
+                << " (points and curves); input guide points within "
+                << fmt(guided.max_input_deviation, 3) << "\n";
+      const ShapeSummary sh = summarize(shape_map(to_piecewise(loft.surface),
+                                                  Eigen::VectorXd::LinSpaced(401, 0, 1).head(400),
+                                                  Eigen::VectorXd::LinSpaced(41, 0, 1)));
+      std::cout << "  shape        around: convex " << fmt(100 * sh.convex_u, 3) << "%, concave "
+                << fmt(100 * sh.concave_u, 3) << "%, flat " << fmt(100 * sh.flat_u, 3)
+                << "%; along the span: convex " << fmt(100 * sh.convex_v, 3) << "%, concave "
+                << fmt(100 * sh.concave_v, 3) << "%, flat " << fmt(100 * sh.flat_v, 3) << "%\n";
+    }
     if (study) {
       std::cout << "  hold-out     withheld section: max distance, rms distance\n";
       for (size_t t = 0; t < h.test.size(); ++t) {
@@ -323,11 +397,22 @@ int run_loft(int argc, const char* const* argv) {
         v.precision(17);
         for (Eigen::Index k = 0; k < loft.section_v.size(); ++k)
           v << (k ? "," : "") << loft.section_v(k);
-        write_surface_json(o, S,
-                           {{"source", input},
-                            {"units", a.get("units", "mm")},
-                            {"section_v", v.str()},
-                            {"max_deviation", fmt(loft.max_deviation, 17)}});
+        std::map<std::string, std::string> meta = {{"source", input},
+                                                   {"units", a.get("units", "mm")},
+                                                   {"section_v", v.str()},
+                                                   {"max_deviation", fmt(loft.max_deviation, 17)}};
+        if (with_guides) {
+          std::ostringstream ids, us;
+          us.precision(17);
+          for (size_t l = 0; l < guided.guides.size(); ++l) {
+            ids << (l ? "," : "") << guided.guides[l].id;
+            us << (l ? "," : "") << guided.guides[l].u;
+          }
+          meta["guides"] = a.get("guides");
+          meta["guide_ids"] = ids.str();
+          meta["guide_u"] = us.str();
+        }
+        write_surface_json(o, S, meta);
         break;
       }
       case Kind::png: {
@@ -337,6 +422,8 @@ int run_loft(int argc, const char* const* argv) {
           L << s.points, s.points.row(0);
           lines.push_back(L);
         }
+        for (const GuideFit& g : guided.guides)
+          lines.push_back(g.points);
         PreviewOptions po;
         po.azimuth_deg = azimuth;
         po.elevation_deg = elevation;
@@ -347,7 +434,8 @@ int run_loft(int argc, const char* const* argv) {
         break;
       }
       case Kind::report:
-        write_report(o, all, loft, study ? &h : nullptr);
+        write_report(o, all, loft, study ? &h : nullptr, with_guides ? &guided : nullptr,
+                     &guide_set);
         break;
       }
       written.push_back(o);

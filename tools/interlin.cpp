@@ -14,6 +14,9 @@ Usage:
       writes meshes (.stl .obj .ply .off), CAD (.igs .json) and a preview (.png).
   interlin loft SECTIONS.csv --holdout K
       Accuracy study: loft every K-th section, measure the distance of the others.
+  interlin loft SECTIONS.csv --guides GUIDES.csv -o OUT [...]
+      Sections plus spanwise guide lines (leading/trailing edge, ...) -> one Gordon
+      B-spline surface through every section and every guide exactly.
   interlin profile PARAMS.json -o SECTIONS.csv [--joint g2|g3] [--curvature K.csv]
       13 cascade parameters (+ optional span law) -> turbine blade profile(s) as a section
       CSV that `interlin loft` accepts (seed 004, natural parametrization).

@@ -21,6 +21,13 @@ std::vector<size_t> withheld_every(size_t count, int K) {
 
 HoldoutResult holdout_study(const std::vector<Section>& sections,
                             const std::vector<size_t>& withheld, const LoftOptions& o) {
+  return holdout_study(sections, withheld,
+                       [&](const std::vector<Section>& keep) { return loft_sections(keep, o); });
+}
+
+HoldoutResult holdout_study(const std::vector<Section>& sections,
+                            const std::vector<size_t>& withheld,
+                            const std::function<LoftResult(const std::vector<Section>&)>& loft) {
   HoldoutResult h;
   std::vector<Section> keep;
   for (size_t i = 0; i < sections.size(); ++i) {
@@ -38,7 +45,7 @@ HoldoutResult holdout_study(const std::vector<Section>& sections,
                                   std::to_string(sections.size()) + ")");
   if (h.test.empty())
     throw std::invalid_argument("no section withheld");
-  h.loft = loft_sections(keep, o);
+  h.loft = loft(keep);
   const PiecewiseSurface S = to_piecewise(h.loft.surface);
   double sum2 = 0;
   long count = 0;

@@ -5,6 +5,7 @@
 #include "interlin/reconstruction/loft.h"
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace interlin {
@@ -28,6 +29,12 @@ struct HoldoutResult {
 
 HoldoutResult holdout_study(const std::vector<Section>& sections,
                             const std::vector<size_t>& withheld, const LoftOptions& options = {});
+
+// The same study with any lofting method (e.g. the guided loft): `loft` maps the training
+// sections to a LoftResult.
+HoldoutResult holdout_study(const std::vector<Section>& sections,
+                            const std::vector<size_t>& withheld,
+                            const std::function<LoftResult(const std::vector<Section>&)>& loft);
 
 // The sections withheld when every K-th is kept (0, K, 2K, ... and always the last one); K >= 2.
 std::vector<size_t> withheld_every(size_t count, int K);
