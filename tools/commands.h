@@ -7,6 +7,12 @@ namespace interlin::cli {
 int run_loft(int argc, const char* const* argv);
 extern const char* const kLoftHelp;
 
+int run_eval(int argc, const char* const* argv);
+extern const char* const kEvalHelp;
+
+int run_mesh(int argc, const char* const* argv);
+extern const char* const kMeshHelp;
+
 int run_profile(int argc, const char* const* argv);
 extern const char* const kProfileHelp;
 

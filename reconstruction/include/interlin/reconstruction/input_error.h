@@ -2,14 +2,11 @@
 // The one error type for bad user input: its message is the single line the CLI prints,
 // "FILE:LINE: what is wrong" (or "FILE: ..." when no line applies).
 
-#include <stdexcept>
+#include "interlin/interflatation/input_error.h" // the InputError type itself
+
 #include <string>
 
 namespace interlin {
-
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // "path:line: message" (line > 0) or "path: message".
 [[noreturn]] void throw_input_error(const std::string& path, long line, const std::string& message);

@@ -1,0 +1,375 @@
+// The .rf model language: lexer and recursive-descent parser.
+#include "model_parser.h"
+
+#include "interlin/interflatation/input_error.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace interlin::rf::detail {
+
+void throw_at(const std::string& file, Pos pos, const std::string& message) {
+  throw InputError(file + ":" + std::to_string(pos.line) + ":" + std::to_string(pos.column) + ": " +
+                   message);
+}
+
+namespace {
+
+constexpr int kMaxDepth = 500; // nesting of parentheses and calls
+
+struct Token {
+  enum class Kind { number, ident, symbol, end };
+  Kind kind = Kind::end;
+  Pos pos;
+  std::string text; // identifier, number text or symbol (one of + - * / ^ ( ) , ; = [ ])
+  double number = 0;
+};
+
+std::string describe(const Token& t) {
+  switch (t.kind) {
+  case Token::Kind::end:
+    return "the end of the file";
+  case Token::Kind::number:
+    return "the number " + t.text;
+  case Token::Kind::ident:
+    return "'" + t.text + "'";
+  default:
+    return "'" + t.text + "'";
+  }
+}
+
+bool is_ident_start(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+
+std::vector<Token> lex(const std::string& s, const std::string& file) {
+  std::vector<Token> out;
+  std::size_t i = 0;
+  int line = 1;
+  std::size_t line_start = 0;
+  if (s.compare(0, 3, "\xEF\xBB\xBF") == 0) { // UTF-8 byte-order mark
+    i = 3;
+    line_start = 3;
+  }
+  auto pos = [&](std::size_t at) { return Pos{line, static_cast<int>(at - line_start) + 1}; };
+  while (i < s.size()) {
+    const char c = s[i];
+    if (c == '\n') {
+      ++line;
+      line_start = ++i;
+      continue;
+    }
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+      ++i;
+      continue;
+    }
+    if (c == '%' || c == '#' || (c == '/' && i + 1 < s.size() && s[i + 1] == '/')) {
+      while (i < s.size() && s[i] != '\n')
+        ++i;
+      continue;
+    }
+    Token t;
+    t.pos = pos(i);
+    if (is_digit(c) || (c == '.' && i + 1 < s.size() && is_digit(s[i + 1]))) {
+      const std::size_t b = i;
+      while (i < s.size() && is_digit(s[i]))
+        ++i;
+      if (i < s.size() && s[i] == '.' &&
+          !(i + 1 < s.size() && (s[i + 1] == '*' || s[i + 1] == '/' || s[i + 1] == '^')))
+        for (++i; i < s.size() && is_digit(s[i]);)
+          ++i;
+      if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        std::size_t j = i + 1;
+        if (j < s.size() && (s[j] == '+' || s[j] == '-'))
+          ++j;
+        if (j >= s.size() || !is_digit(s[j]))
+          throw_at(file, t.pos,
+                   "malformed number '" + s.substr(b, j - b) + "': the exponent needs digits");
+        for (i = j; i < s.size() && is_digit(s[i]);)
+          ++i;
+      }
+      if (i < s.size() && is_ident_start(s[i]))
+        throw_at(file, t.pos,
+                 "malformed number '" + s.substr(b, i - b + 1) +
+                     "' (a number followed by a letter)");
+      t.kind = Token::Kind::number;
+      t.text = s.substr(b, i - b);
+      const std::string digits =
+          t.text[0] == '.' ? "0" + t.text : t.text; // from_chars needs a digit
+      const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), t.number);
+      if (r.ec == std::errc::result_out_of_range || !std::isfinite(t.number))
+        throw_at(file, t.pos, "number " + t.text + " is out of the range of a double");
+      out.push_back(t);
+      continue;
+    }
+    if (is_ident_start(c)) {
+      const std::size_t b = i;
+      while (i < s.size() && (is_ident_start(s[i]) || is_digit(s[i])))
+        ++i;
+      t.kind = Token::Kind::ident;
+      t.text = s.substr(b, i - b);
+      out.push_back(t);
+      continue;
+    }
+    if (c == '.' && i + 1 < s.size() && (s[i + 1] == '*' || s[i + 1] == '/' || s[i + 1] == '^')) {
+      t.kind = Token::Kind::symbol; // MATLAB's element-wise operators are the plain ones here
+      t.text = std::string(1, s[i + 1]);
+      i += 2;
+      out.push_back(t);
+      continue;
+    }
+    static const std::string symbols = "+-*/^(),;=[]";
+    if (symbols.find(c) != std::string::npos) {
+      t.kind = Token::Kind::symbol;
+      t.text = std::string(1, c);
+      ++i;
+      out.push_back(t);
+      continue;
+    }
+    char buf[64];
+    if (static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7f)
+      std::snprintf(buf, sizeof buf, "unexpected character '%c'", c);
+    else
+      std::snprintf(buf, sizeof buf,
+                    "unexpected byte 0x%02X (only ASCII is allowed outside comments)",
+                    static_cast<unsigned char>(c));
+    throw_at(file, t.pos, buf);
+  }
+  Token end;
+  end.kind = Token::Kind::end;
+  end.pos = pos(i);
+  out.push_back(end);
+  return out;
+}
+
+class Parser {
+public:
+  Parser(std::vector<Token> tokens, const std::string& file) : t_(std::move(tokens)), file_(file) {}
+
+  std::vector<Statement> program() {
+    std::vector<Statement> out;
+    while (peek().kind != Token::Kind::end)
+      out.push_back(statement());
+    return out;
+  }
+
+private:
+  const Token& peek(int ahead = 0) const { return t_[std::min(i_ + ahead, t_.size() - 1)]; }
+  bool is_symbol(const char* s, int ahead = 0) const {
+    return peek(ahead).kind == Token::Kind::symbol && peek(ahead).text == s;
+  }
+  const Token& next() { return t_[std::min(i_++, t_.size() - 1)]; }
+  [[noreturn]] void fail(const Token& at, const std::string& message) const {
+    throw_at(file_, at.pos, message);
+  }
+  void expect(const char* symbol, const std::string& context) {
+    if (!is_symbol(symbol))
+      fail(peek(),
+           std::string("expected '") + symbol + "' " + context + ", found " + describe(peek()));
+    next();
+  }
+  std::string ident(const std::string& context) {
+    if (peek().kind != Token::Kind::ident)
+      fail(peek(), "expected a name " + context + ", found " + describe(peek()));
+    return next().text;
+  }
+
+  Statement statement() {
+    Statement st;
+    const Token& first = peek();
+    st.pos = first.pos;
+    if (first.kind != Token::Kind::ident)
+      fail(first, "expected a statement (NAME = expression;, param, def or box), found " +
+                      describe(first));
+    if (first.text == "def") {
+      next();
+      st.kind = Statement::Kind::def;
+      st.name = ident("after 'def'");
+      expect("(", "after the function name");
+      if (!is_symbol(")"))
+        for (;;) {
+          st.param_pos.push_back(peek().pos);
+          st.params.push_back(ident("(a parameter)"));
+          if (is_symbol(")"))
+            break;
+          expect(",", "or ')' in the parameter list");
+        }
+      expect(")", "after the parameters");
+      expect("=", "after the parameter list");
+    } else if (first.text == "param") {
+      next();
+      st.kind = Statement::Kind::param;
+      st.name = ident("after 'param'");
+      expect("=", "after the parameter name");
+    } else if (first.text == "box") {
+      next();
+      st.kind = Statement::Kind::box;
+      expect("(", "after 'box' (box(x0, y0, z0, x1, y1, z1);)");
+      for (int k = 0; k < 6; ++k) {
+        st.exprs.push_back(expr(0));
+        if (k < 5)
+          expect(",", "between the six bounds of box(x0, y0, z0, x1, y1, z1)");
+      }
+      expect(")", "after the six bounds of box(x0, y0, z0, x1, y1, z1)");
+      expect(";", "after the box statement");
+      return st;
+    } else {
+      st.kind = Statement::Kind::assign;
+      st.name = next().text;
+      if (!is_symbol("="))
+        fail(peek(), "expected '=' after '" + st.name +
+                         "' (statements are NAME = expression;), found " + describe(peek()));
+      next();
+    }
+    st.exprs.push_back(expr(0));
+    if (!is_symbol(";"))
+      fail(peek(), "expected ';' at the end of the statement, found " + describe(peek()));
+    next();
+    return st;
+  }
+
+  void check_depth(int depth) const {
+    if (depth > kMaxDepth)
+      fail(peek(),
+           "expression nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
+  }
+
+  // expr := term { (+|-) term }
+  Ast expr(int depth) {
+    check_depth(depth);
+    Ast left = term(depth);
+    while (is_symbol("+") || is_symbol("-")) {
+      const Token& op = next();
+      Ast b;
+      b.kind = Ast::Kind::binary;
+      b.pos = op.pos;
+      b.op = op.text[0];
+      b.args.push_back(std::move(left));
+      b.args.push_back(term(depth));
+      left = std::move(b);
+    }
+    return left;
+  }
+  // term := unary { (*|/) unary }
+  Ast term(int depth) {
+    Ast left = unary(depth);
+    while (is_symbol("*") || is_symbol("/")) {
+      const Token& op = next();
+      Ast b;
+      b.kind = Ast::Kind::binary;
+      b.pos = op.pos;
+      b.op = op.text[0];
+      b.args.push_back(std::move(left));
+      b.args.push_back(unary(depth));
+      left = std::move(b);
+    }
+    return left;
+  }
+  // unary := (-|+) unary | power      (so -x^2 = -(x^2))
+  Ast unary(int depth) {
+    check_depth(depth);
+    if (is_symbol("-") || is_symbol("+")) {
+      const Token& op = next();
+      Ast u;
+      u.kind = Ast::Kind::unary;
+      u.pos = op.pos;
+      u.op = op.text[0];
+      u.args.push_back(unary(depth + 1));
+      return u;
+    }
+    return power(depth);
+  }
+  // power := primary [ ^ [-|+] primary ]; a^b^c is refused (MATLAB and mathematics disagree)
+  Ast power(int depth) {
+    Ast base = primary(depth);
+    if (!is_symbol("^"))
+      return base;
+    const Token& op = next();
+    Ast p;
+    p.kind = Ast::Kind::binary;
+    p.pos = op.pos;
+    p.op = '^';
+    p.args.push_back(std::move(base));
+    if (is_symbol("-") || is_symbol("+")) { // 2^-1
+      const Token& sign = next();
+      Ast u;
+      u.kind = Ast::Kind::unary;
+      u.pos = sign.pos;
+      u.op = sign.text[0];
+      u.args.push_back(primary(depth + 1));
+      p.args.push_back(std::move(u));
+    } else {
+      p.args.push_back(primary(depth + 1));
+    }
+    if (is_symbol("^"))
+      fail(peek(), "a^b^c is ambiguous: write (a^b)^c or a^(b^c)");
+    return p;
+  }
+  Ast primary(int depth) {
+    const Token& t = peek();
+    Ast a;
+    a.pos = t.pos;
+    if (t.kind == Token::Kind::number) {
+      next();
+      a.kind = Ast::Kind::number;
+      a.number = t.number;
+      return a;
+    }
+    if (t.kind == Token::Kind::ident) {
+      next();
+      a.name = t.text;
+      if (!is_symbol("(")) {
+        a.kind = Ast::Kind::name;
+        return a;
+      }
+      next();
+      a.kind = Ast::Kind::call;
+      if (!is_symbol(")"))
+        for (;;) {
+          a.args.push_back(expr(depth + 1));
+          if (is_symbol(")"))
+            break;
+          expect(",", "or ')' between the arguments of " + a.name + "(...)");
+        }
+      next();
+      return a;
+    }
+    if (is_symbol("(")) {
+      next();
+      Ast inner = expr(depth + 1);
+      expect(")",
+             "to close '(' at " + std::to_string(t.pos.line) + ":" + std::to_string(t.pos.column));
+      return inner;
+    }
+    if (is_symbol("[")) {
+      next();
+      a.kind = Ast::Kind::list;
+      if (!is_symbol("]"))
+        for (;;) {
+          a.args.push_back(expr(depth + 1));
+          if (is_symbol("]"))
+            break;
+          expect(",", "or ']' in the list");
+        }
+      next();
+      return a;
+    }
+    fail(t, "expected a number, a name, '(' or '[', found " + describe(t));
+  }
+
+  std::vector<Token> t_;
+  std::size_t i_ = 0;
+  const std::string& file_;
+};
+
+} // namespace
+
+std::vector<Statement> parse_model_text(const std::string& text, const std::string& file) {
+  return Parser(lex(text, file), file).program();
+}
+
+} // namespace interlin::rf::detail

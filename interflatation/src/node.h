@@ -1,0 +1,92 @@
+#pragma once
+// Internal: the node of an R-function expression graph. Expressions are immutable trees of shared
+// nodes (a DAG once variables are reused); compile() hash-conses them into a program.
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace interlin::rf::detail {
+
+// Elementary operations. Everything the library offers (R-operations, primitives, transforms,
+// normalisation) is built from these, so the kernels, the constant folder and the graph
+// differentiation each handle one short list.
+enum class Op : unsigned char {
+  // leaves
+  constant,
+  x,
+  y,
+  z,
+  // arithmetic
+  add,
+  sub,
+  mul,
+  div,
+  neg,
+  pow_k, // a^k, k a constant
+  pow,   // a^b
+  // elementary functions
+  sqrt,
+  abs,
+  sign,
+  sin,
+  cos,
+  tan,
+  asin,
+  acos,
+  atan,
+  atan2, // atan2(a, b)
+  exp,
+  log,
+  min,
+  max,
+  hypot, // sqrt(a^2 + b^2)
+  ratio, // a / b, and 0 where b = 0: the derivative factors at singular points
+  // R0 system, seed 000 (2.1): a + b -+ sqrt(a^2 + b^2)
+  and0,
+  or0,
+  // signed distance to a closed polyline (seed 003 (3)-(6)) and its partial derivatives
+  curve,
+  curve_du,
+  curve_dv,
+  // immediate forms, only in compiled programs: one operand and the constant k
+  add_k,  // a + k
+  mul_k,  // a * k
+  k_sub,  // k - a
+  k_div,  // k / a
+  div_k,  // a / k
+  square, // a * a
+};
+
+// A closed polyline in the plane: the boundary of a 2D region for the `curve` operations.
+struct Polyline {
+  std::vector<Eigen::Vector2d> points; // vertices; the closing segment is implicit
+  double orientation = 1;              // twice the signed area: > 0 counter-clockwise
+  // Signed distance: + inside (odd number of crossings, half-open rule), - outside; gradient
+  // (du, dv) of the signed distance (the unit vector away from the nearest point, oriented
+  // inward; on the curve the inward normal of the nearest segment).
+  double signed_distance(double u, double v, double* du = nullptr, double* dv = nullptr) const;
+};
+
+// The longest operand chain an expression may have: the graph passes (differentiation,
+// substitution, compilation, destruction) recurse along it.
+inline constexpr int kMaxDepth = 20000;
+
+struct Node {
+  Op op;
+  double k = 0;  // the constant of `constant` and `pow_k`
+  int depth = 0; // longest chain of operands below this node
+  std::shared_ptr<const Node> a, b;
+  std::shared_ptr<const Polyline> curve; // for the curve operations
+};
+
+using NodePtr = std::shared_ptr<const Node>;
+
+int arity(Op op);
+const char* op_name(Op op);
+
+// The one constructor of operation nodes: folds constants and drops identities (x + 0, x * 1, ...).
+NodePtr make(Op op, NodePtr a, NodePtr b = nullptr, double k = 0,
+             std::shared_ptr<const Polyline> curve = nullptr);
+
+} // namespace interlin::rf::detail
