@@ -1,12 +1,19 @@
 #include "cli_args.h"
 
 #include <charconv>
+#include <cmath>
+#include <sstream>
 
 namespace interlin::cli {
 
 std::string ParsedArgs::get(const std::string& name, const std::string& fallback) const {
   const auto it = values.find(name);
   return it == values.end() ? fallback : it->second.back();
+}
+
+std::vector<std::string> ParsedArgs::all(const std::string& name) const {
+  const auto it = values.find(name);
+  return it == values.end() ? std::vector<std::string>{} : it->second;
 }
 
 ParsedArgs parse_args(int argc, const char* const* argv, int first,
@@ -101,6 +108,26 @@ std::vector<int> parse_int_list(const std::string& option, const std::string& te
       return out;
     start = comma + 1;
   }
+}
+
+double parse_double(const std::string& option, const std::string& text) {
+  double v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() ||
+      !std::isfinite(v))
+    throw UsageError("--" + option + ": '" + text + "' is not a finite number");
+  return v;
+}
+
+std::vector<double> parse_double_list(const std::string& option, const std::string& text) {
+  std::vector<double> out;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ','))
+    out.push_back(parse_double(option, item));
+  if (!text.empty() && text.back() == ',')
+    throw UsageError("--" + option + ": trailing comma in '" + text + "'");
+  return out;
 }
 
 std::string parse_choice(const std::string& option, const std::string& text,

@@ -27,6 +27,8 @@ struct ParsedArgs {
   bool has(const std::string& name) const { return values.count(name) > 0; }
   // The (last) value of an option, or `fallback` when absent.
   std::string get(const std::string& name, const std::string& fallback = "") const;
+  // Every value of a repeatable option in command-line order, none when absent.
+  std::vector<std::string> all(const std::string& name) const;
 };
 
 // Parses argv[first..argc). Throws UsageError for unknown options, missing values and repeated
@@ -39,6 +41,10 @@ int parse_int(const std::string& option, const std::string& text, int min, int m
 std::pair<int, int> parse_int_pair(const std::string& option, const std::string& text, int min,
                                    int max);
 std::vector<int> parse_int_list(const std::string& option, const std::string& text, int min);
+// One finite number, the whole text ("--OPTION: 'TEXT' is not a finite number").
+double parse_double(const std::string& option, const std::string& text);
+// Comma-separated finite numbers.
+std::vector<double> parse_double_list(const std::string& option, const std::string& text);
 // One of `choices`; the error message lists them.
 std::string parse_choice(const std::string& option, const std::string& text,
                          const std::vector<std::string>& choices);

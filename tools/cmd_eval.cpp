@@ -1,5 +1,5 @@
 // interlin eval: an R-function model (.rf) evaluated at the points of a CSV file.
-#include "cli_args.h"
+#include "cli_common.h"
 #include "commands.h"
 
 #include "interlin/interflatation/model.h"
@@ -9,14 +9,11 @@
 #include <array>
 #include <cerrno>
 #include <charconv>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string_view>
 
 namespace interlin::cli {
@@ -50,9 +47,6 @@ Examples:
 )";
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-namespace fs = std::filesystem;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
@@ -176,21 +170,6 @@ Points3 read_points(const std::string& path) {
   return P;
 }
 
-// NAME=VALUE for --set
-std::pair<std::string, double> parse_setting(const std::string& text) {
-  const auto eq = text.find('=');
-  const std::string name = text.substr(0, eq);
-  double v = 0;
-  if (eq == std::string::npos || name.empty())
-    throw UsageError("--set " + text + ": expected NAME=VALUE");
-  const std::string value = text.substr(eq + 1);
-  const auto r = std::from_chars(value.data(), value.data() + value.size(), v);
-  if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size() ||
-      !std::isfinite(v))
-    throw UsageError("--set " + text + ": '" + value + "' is not a finite number");
-  return {name, v};
-}
-
 void write_values(std::ostream& out, const Points3& P, const Eigen::VectorXd& F, const Points3* G) {
   out << (G ? "x,y,z,F,Fx,Fy,Fz\n" : "x,y,z,F\n");
   char buf[32];
@@ -211,80 +190,49 @@ void write_values(std::ostream& out, const Points3& P, const Eigen::VectorXd& F,
   }
 }
 
+// The body of `interlin eval` (run_command handles help and exit statuses).
+void eval_main(const ParsedArgs& a, std::vector<std::string>&) {
+  if (a.positional.size() != 2)
+    throw UsageError("expected MODEL.rf POINTS.csv, got " + std::to_string(a.positional.size()) +
+                     " argument(s) (see --help)");
+  const ModelOptions mo = model_options(a, SettingLabel::setting);
+  const std::string output = a.get("output");
+  if (!output.empty())
+    check_output_dir(output);
+  const bool with_gradient = a.has("gradient");
+  const Progress progress{a.has("quiet")};
+  progress("reading " + a.positional[0]);
+  const ImplicitFunction f = load_model(a.positional[0], mo);
+  progress("reading " + a.positional[1]);
+  const Points3 P = read_points(a.positional[1]);
+  progress("evaluating at " + std::to_string(P.rows()) + " points");
+  Eigen::VectorXd F(P.rows());
+  Points3 G(P.rows(), 3);
+  if (with_gradient)
+    f.gradient(P, F, G);
+  else
+    f.value(P, F);
+  if (output.empty()) {
+    write_values(std::cout, P, F, with_gradient ? &G : nullptr);
+    std::cout.flush();
+    if (!std::cout)
+      throw std::runtime_error("cannot write to standard output");
+  } else {
+    write_file_atomically(
+        output, [&](std::ostream& out) { write_values(out, P, F, with_gradient ? &G : nullptr); });
+    progress("wrote " + output);
+  }
+}
+
 } // namespace
 
 int run_eval(int argc, const char* const* argv) {
-  try {
-    const ParsedArgs a = parse_args(argc, argv, 2,
-                                    {{"output", 'o', true, false},
-                                     {"gradient", 0, false, false},
-                                     {"set", 0, true, true},
-                                     {"var", 0, true, false},
-                                     {"quiet", 'q', false, false},
-                                     {"help", 'h', false, false}});
-    if (a.has("help")) {
-      std::cout << kEvalHelp;
-      return 0;
-    }
-    if (a.positional.size() != 2)
-      throw UsageError("expected MODEL.rf POINTS.csv, got " + std::to_string(a.positional.size()) +
-                       " argument(s) (see --help)");
-    ModelOptions mo;
-    if (a.has("var"))
-      mo.output = a.get("var");
-    if (a.has("set"))
-      for (const std::string& s : a.values.at("set")) {
-        const auto [name, v] = parse_setting(s);
-        if (mo.parameters.count(name))
-          throw UsageError("--set " + name + " given twice");
-        mo.parameters[name] = v;
-      }
-    const std::string output = a.get("output");
-    if (!output.empty()) {
-      const fs::path dir =
-          fs::path(output).has_parent_path() ? fs::path(output).parent_path() : fs::path(".");
-      if (!fs::is_directory(dir))
-        throw std::runtime_error("cannot write " + output + ": directory " + dir.string() +
-                                 " does not exist");
-    }
-    const bool quiet = a.has("quiet"), with_gradient = a.has("gradient");
-    const auto start = Clock::now();
-    auto progress = [&](const std::string& what) {
-      if (!quiet)
-        std::fprintf(stderr, "[%7.1f ms] %s\n",
-                     std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
-                     what.c_str());
-    };
-    progress("reading " + a.positional[0]);
-    const ImplicitFunction f = load_model(a.positional[0], mo);
-    progress("reading " + a.positional[1]);
-    const Points3 P = read_points(a.positional[1]);
-    progress("evaluating at " + std::to_string(P.rows()) + " points");
-    Eigen::VectorXd F(P.rows());
-    Points3 G(P.rows(), 3);
-    if (with_gradient)
-      f.gradient(P, F, G);
-    else
-      f.value(P, F);
-    if (output.empty()) {
-      write_values(std::cout, P, F, with_gradient ? &G : nullptr);
-      std::cout.flush();
-      if (!std::cout)
-        throw std::runtime_error("cannot write to standard output");
-    } else {
-      write_file_atomically(output, [&](std::ostream& out) {
-        write_values(out, P, F, with_gradient ? &G : nullptr);
-      });
-      progress("wrote " + output);
-    }
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "interlin eval: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "interlin: " << e.what() << "\n";
-    return 1;
-  }
+  return run_command("eval", kEvalHelp, argc, argv,
+                     {{"output", 'o', true, false},
+                      {"gradient", 0, false, false},
+                      {"set", 0, true, true},
+                      {"var", 0, true, false}},
+                     eval_main);
 }
 
 } // namespace interlin::cli

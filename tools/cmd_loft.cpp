@@ -1,5 +1,5 @@
 // interlin loft: blade-section file -> exact B-spline surface -> mesh, CAD, preview.
-#include "cli_args.h"
+#include "cli_common.h"
 #include "commands.h"
 
 #include "interlin/interlineation/shape_diagnostics.h"
@@ -17,10 +17,7 @@
 #include "interlin/reconstruction/surface_json.h"
 #include "interlin/reconstruction/surface_mesh.h"
 
-#include <chrono>
-#include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -83,15 +80,10 @@ Examples:
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-namespace fs = std::filesystem;
-
 enum class Kind { mesh, iges, json, png, report };
 
 Kind output_kind(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext)
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off")
     return Kind::mesh;
   if (ext == ".igs" || ext == ".iges")
@@ -104,24 +96,6 @@ Kind output_kind(const std::string& path) {
     return Kind::report;
   throw UsageError("output '" + path +
                    "': unknown extension (use .stl .obj .ply .off .igs .iges .json .png .csv)");
-}
-
-struct Progress {
-  bool quiet;
-  Clock::time_point start = Clock::now();
-  void operator()(const std::string& what) const {
-    if (!quiet)
-      std::fprintf(stderr, "[%7.1f ms] %s\n",
-                   std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
-                   what.c_str());
-  }
-};
-
-std::string fmt(double x, int prec = 4) {
-  std::ostringstream s;
-  s.precision(prec);
-  s << x;
-  return s.str();
 }
 
 LengthUnit unit_of(const std::string& u) {
@@ -166,298 +140,265 @@ void write_report(const std::string& path, const std::vector<Section>& all, cons
   });
 }
 
+// The body of `interlin loft` (run_command handles help, exit statuses and removal on failure).
+void loft_main(const ParsedArgs& a, std::vector<std::string>& written) {
+  const std::string input = single_input(a, "section file");
+  LoftOptions opt;
+  opt.degree = parse_int("degree", a.get("degree", "3"), 1, 9);
+  opt.span_degree = parse_int("span-degree", a.get("span-degree", "3"), 1, 9);
+  const std::string align = parse_choice("align", a.get("align", "first"), {"first", "le", "te"});
+  opt.align = align == "le"   ? StartAlign::leading_edge
+              : align == "te" ? StartAlign::trailing_edge
+                              : StartAlign::first;
+  const std::string match =
+      parse_choice("match", a.get("match", "auto"), {"auto", "index", "arclength"});
+  opt.match = match == "index"       ? Correspondence::index
+              : match == "arclength" ? Correspondence::arc_length
+                                     : Correspondence::automatic;
+  opt.section_exponent =
+      parse_choice("param", a.get("param", "chord"), {"chord", "centripetal"}) == "chord" ? 1.0
+                                                                                          : 0.5;
+  const std::string sp = parse_choice("span-param", a.get("span-param", "centripetal"),
+                                      {"chord", "centripetal", "uniform"});
+  opt.span_exponent = sp == "chord" ? 1.0 : sp == "centripetal" ? 0.5 : 0.0;
+  const LengthUnit unit =
+      unit_of(parse_choice("units", a.get("units", "mm"), {"mm", "cm", "m", "in"}));
+  const auto [nu, nv] = parse_int_pair("samples", a.get("samples", "400,120"), 3, 100000);
+  const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
+  const bool cap = a.has("cap"), quiet = a.has("quiet"), with_guides = a.has("guides");
+  double guide_tolerance = 1e-3;
+  if (a.has("guide-tolerance")) {
+    const std::string t = a.get("guide-tolerance");
+    char* end = nullptr;
+    guide_tolerance = std::strtod(t.c_str(), &end);
+    if (t.empty() || *end != '\0' || !(guide_tolerance > 0) || !(guide_tolerance < 1))
+      throw UsageError("--guide-tolerance: expected a number in (0, 1), got '" + t + "'");
+    if (!with_guides)
+      throw UsageError("--guide-tolerance needs --guides");
+  }
+  if (a.has("holdout") && a.has("withhold"))
+    throw UsageError("--holdout and --withhold exclude each other");
+  const bool study = a.has("holdout") || a.has("withhold");
+  const std::vector<std::string> outputs = a.all("output");
+  if (outputs.empty() && !study)
+    throw UsageError("nothing to do: give -o FILE (or --holdout K for a study)");
+  std::map<std::string, Kind> kinds;
+  for (const std::string& o : outputs) {
+    kinds[o] = output_kind(o);
+    check_output_dir(o);
+  }
+
+  const Progress progress{quiet};
+  progress("reading " + input);
+  const SectionSet set = read_sections(input);
+  if (!quiet)
+    for (const std::string& w : set.warnings)
+      std::cerr << "warning: " << w << "\n";
+  const std::vector<Section>& all = set.sections;
+  GuideSet guide_set;
+  if (with_guides) {
+    progress("reading guides " + a.get("guides"));
+    guide_set = read_guides(a.get("guides"));
+  }
+  GuidedLoftOptions gopt;
+  gopt.loft = opt;
+  gopt.guide_tolerance = guide_tolerance;
+  GuidedLoftResult guided;
+  // The loft of a set of sections: with guides the Gordon surface, else the section loft.
+  const auto loft_of = [&](const std::vector<Section>& secs) {
+    if (!with_guides)
+      return loft_sections(secs, opt);
+    guided = guided_loft(secs, guide_set, gopt);
+    return guided.loft;
+  };
+
+  HoldoutResult h;
+  LoftResult loft;
+  try {
+    if (study) {
+      const std::vector<size_t> out =
+          a.has("holdout")
+              ? withheld_every(all.size(), parse_int("holdout", a.get("holdout"), 2, 1000000))
+              : [&] {
+                  std::vector<size_t> v;
+                  for (int i : parse_int_list("withhold", a.get("withhold"), 0))
+                    v.push_back(static_cast<size_t>(i));
+                  return v;
+                }();
+      progress("hold-out study: lofting " + std::to_string(all.size() - out.size()) +
+               " sections, measuring " + std::to_string(out.size()));
+      h = holdout_study(all, out, loft_of);
+      loft = h.loft;
+    } else {
+      progress("lofting " + std::to_string(all.size()) + " sections" +
+               (with_guides ? " with " + std::to_string(guide_set.guides.size()) + " guides" : ""));
+      loft = loft_of(all);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw_input_error(input, 0, e.what()); // a property of the file's sections
+  }
+  if (!quiet)
+    for (const std::string& n : loft.notes)
+      std::cerr << "note: " << n << "\n";
+
+  // Summary.
+  const BSplineSurface& S = loft.surface;
+  long points = 0;
+  for (const PreparedSection& s : loft.sections)
+    points += s.points.rows();
+  std::cout << "interlin loft " << input << "\n";
+  std::cout << "  sections     " << loft.sections.size() << " (" << points
+            << " points), correspondence "
+            << (loft.used == Correspondence::index ? "index" : "arc length") << ", start " << align
+            << "\n";
+  std::cout << "  surface      degree " << S.degree_u << " x " << S.degree_v << ", control net "
+            << S.num_u << " x " << S.num_v << ", closed around (C" << S.degree_u - 1 << " seam)\n";
+  std::cout << "  exactness    max |S(u_i,v_k) - P_i| = " << fmt(loft.max_deviation, 3) << " ("
+            << fmt(loft.max_deviation / loft.bbox_diagonal, 3) << " x bbox diagonal "
+            << fmt(loft.bbox_diagonal) << ")" << (with_guides ? ", sections and guides" : "")
+            << "\n";
+  if (with_guides) {
+    long inserted = 0;
+    for (const PreparedSection& p : loft.sections)
+      for (Eigen::Index src : p.source)
+        inserted += src < 0;
+    std::cout << "  guides       " << guided.guides.size() << " (";
+    for (size_t l = 0; l < guided.guides.size(); ++l)
+      std::cout << (l ? ", " : "") << guided.guides[l].id << " at u = " << fmt(guided.guides[l].u);
+    std::cout << "), " << inserted << " crossing(s) inserted into sections\n";
+    std::cout << "  guide fit    max |S(u_l,v) - G_l(v)| = " << fmt(guided.max_guide_deviation, 3)
+              << " (points and curves); input guide points within "
+              << fmt(guided.max_input_deviation, 3) << "\n";
+    const ShapeSummary sh = summarize(shape_map(to_piecewise(loft.surface),
+                                                Eigen::VectorXd::LinSpaced(401, 0, 1).head(400),
+                                                Eigen::VectorXd::LinSpaced(41, 0, 1)));
+    std::cout << "  shape        around: convex " << fmt(100 * sh.convex_u, 3) << "%, concave "
+              << fmt(100 * sh.concave_u, 3) << "%, flat " << fmt(100 * sh.flat_u, 3)
+              << "%; along the span: convex " << fmt(100 * sh.convex_v, 3) << "%, concave "
+              << fmt(100 * sh.concave_v, 3) << "%, flat " << fmt(100 * sh.flat_v, 3) << "%\n";
+  }
+  if (study) {
+    std::cout << "  hold-out     withheld section: max distance, rms distance\n";
+    for (size_t t = 0; t < h.test.size(); ++t) {
+      const Eigen::VectorXd& d = h.distance[t];
+      std::cout << "               " << all[h.test[t]].id << ": " << fmt(d.maxCoeff()) << ", "
+                << fmt(std::sqrt(d.squaredNorm() / static_cast<double>(d.size()))) << "\n";
+    }
+    std::cout << "  hold-out     all " << h.test.size() << " withheld sections: max " << fmt(h.max)
+              << ", rms " << fmt(h.rms) << "\n";
+  }
+
+  // Outputs: mesh first when a mesh or preview is wanted.
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  bool need_mesh = false;
+  for (const auto& [o, k] : kinds)
+    need_mesh = need_mesh || k == Kind::mesh || k == Kind::png;
+  if (need_mesh) {
+    progress("meshing " + std::to_string(nu) + " x " + std::to_string(nv) +
+             (cap ? ", capped" : ""));
+    SurfaceMeshOptions mo;
+    mo.nu = nu;
+    mo.nv = nv;
+    mo.cap = cap;
+    mo.required_v.assign(loft.section_v.data(), loft.section_v.data() + loft.section_v.size());
+    surface_mesh(to_piecewise(S), mo, V, F);
+    const MeshReport r = check_mesh(V, F);
+    std::cout << "  mesh         " << r.vertices << " vertices, " << r.faces << " triangles, "
+              << (cap ? (r.watertight() ? "watertight" : "NOT watertight") : "open at hub and tip")
+              << ", area " << fmt(r.area, 6);
+    if (cap)
+      std::cout << ", volume " << fmt(r.volume, 6);
+    std::cout << ", min angle " << fmt(r.min_angle_deg, 3) << " deg\n";
+    if (cap && !r.watertight())
+      throw std::runtime_error("capped mesh is not watertight (boundary edges " +
+                               std::to_string(r.boundary_edges) + ", non-manifold edges " +
+                               std::to_string(r.nonmanifold_edges) + ")");
+  }
+  for (const std::string& o : outputs) {
+    progress("writing " + o);
+    switch (kinds.at(o)) {
+    case Kind::mesh:
+      write_mesh(o, V, F);
+      break;
+    case Kind::iges: {
+      IgesOptions io;
+      io.unit = unit;
+      io.description = "interlin loft of " + input;
+      write_iges(o, S, io);
+      break;
+    }
+    case Kind::json: {
+      std::ostringstream v;
+      v.precision(17);
+      for (Eigen::Index k = 0; k < loft.section_v.size(); ++k)
+        v << (k ? "," : "") << loft.section_v(k);
+      std::map<std::string, std::string> meta = {{"source", input},
+                                                 {"units", a.get("units", "mm")},
+                                                 {"section_v", v.str()},
+                                                 {"max_deviation", fmt(loft.max_deviation, 17)}};
+      if (with_guides) {
+        std::ostringstream ids, us;
+        us.precision(17);
+        for (size_t l = 0; l < guided.guides.size(); ++l) {
+          ids << (l ? "," : "") << guided.guides[l].id;
+          us << (l ? "," : "") << guided.guides[l].u;
+        }
+        meta["guides"] = a.get("guides");
+        meta["guide_ids"] = ids.str();
+        meta["guide_u"] = us.str();
+      }
+      write_surface_json(o, S, meta);
+      break;
+    }
+    case Kind::png: {
+      std::vector<Eigen::MatrixXd> lines;
+      for (const PreparedSection& s : loft.sections) {
+        Eigen::MatrixXd L(s.points.rows() + 1, 3);
+        L << s.points, s.points.row(0);
+        lines.push_back(L);
+      }
+      for (const GuideFit& g : guided.guides)
+        lines.push_back(g.points);
+      PreviewOptions po;
+      po.azimuth_deg = azimuth;
+      po.elevation_deg = elevation;
+      po.up = (loft.sections.back().points.colwise().mean() -
+               loft.sections.front().points.colwise().mean())
+                  .transpose();
+      write_preview_png(o, V, F, lines, po);
+      break;
+    }
+    case Kind::report:
+      write_report(o, all, loft, study ? &h : nullptr, with_guides ? &guided : nullptr, &guide_set);
+      break;
+    }
+    written.push_back(o);
+  }
+  print_written(written);
+  progress("done");
+}
+
 } // namespace
 
 int run_loft(int argc, const char* const* argv) {
-  std::vector<std::string> written;
-  try {
-    const ParsedArgs a = parse_args(argc, argv, 2,
-                                    {{"output", 'o', true, true},
-                                     {"samples", 0, true, false},
-                                     {"cap", 0, false, false},
-                                     {"degree", 0, true, false},
-                                     {"span-degree", 0, true, false},
-                                     {"align", 0, true, false},
-                                     {"match", 0, true, false},
-                                     {"param", 0, true, false},
-                                     {"span-param", 0, true, false},
-                                     {"units", 0, true, false},
-                                     {"holdout", 0, true, false},
-                                     {"withhold", 0, true, false},
-                                     {"view", 0, true, false},
-                                     {"guides", 0, true, false},
-                                     {"guide-tolerance", 0, true, false},
-                                     {"quiet", 'q', false, false},
-                                     {"help", 'h', false, false}});
-    if (a.has("help")) {
-      std::cout << kLoftHelp;
-      return 0;
-    }
-    if (a.positional.size() != 1)
-      throw UsageError(a.positional.empty() ? "missing the section file (see --help)"
-                                            : "expected one section file, got " +
-                                                  std::to_string(a.positional.size()));
-    const std::string input = a.positional[0];
-    LoftOptions opt;
-    opt.degree = parse_int("degree", a.get("degree", "3"), 1, 9);
-    opt.span_degree = parse_int("span-degree", a.get("span-degree", "3"), 1, 9);
-    const std::string align = parse_choice("align", a.get("align", "first"), {"first", "le", "te"});
-    opt.align = align == "le"   ? StartAlign::leading_edge
-                : align == "te" ? StartAlign::trailing_edge
-                                : StartAlign::first;
-    const std::string match =
-        parse_choice("match", a.get("match", "auto"), {"auto", "index", "arclength"});
-    opt.match = match == "index"       ? Correspondence::index
-                : match == "arclength" ? Correspondence::arc_length
-                                       : Correspondence::automatic;
-    opt.section_exponent =
-        parse_choice("param", a.get("param", "chord"), {"chord", "centripetal"}) == "chord" ? 1.0
-                                                                                            : 0.5;
-    const std::string sp = parse_choice("span-param", a.get("span-param", "centripetal"),
-                                        {"chord", "centripetal", "uniform"});
-    opt.span_exponent = sp == "chord" ? 1.0 : sp == "centripetal" ? 0.5 : 0.0;
-    const LengthUnit unit =
-        unit_of(parse_choice("units", a.get("units", "mm"), {"mm", "cm", "m", "in"}));
-    const auto [nu, nv] = parse_int_pair("samples", a.get("samples", "400,120"), 3, 100000);
-    const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
-    const bool cap = a.has("cap"), quiet = a.has("quiet"), with_guides = a.has("guides");
-    double guide_tolerance = 1e-3;
-    if (a.has("guide-tolerance")) {
-      const std::string t = a.get("guide-tolerance");
-      char* end = nullptr;
-      guide_tolerance = std::strtod(t.c_str(), &end);
-      if (t.empty() || *end != '\0' || !(guide_tolerance > 0) || !(guide_tolerance < 1))
-        throw UsageError("--guide-tolerance: expected a number in (0, 1), got '" + t + "'");
-      if (!with_guides)
-        throw UsageError("--guide-tolerance needs --guides");
-    }
-    if (a.has("holdout") && a.has("withhold"))
-      throw UsageError("--holdout and --withhold exclude each other");
-    const bool study = a.has("holdout") || a.has("withhold");
-    std::vector<std::string> outputs =
-        a.has("output") ? a.values.at("output") : std::vector<std::string>{};
-    if (outputs.empty() && !study)
-      throw UsageError("nothing to do: give -o FILE (or --holdout K for a study)");
-    std::map<std::string, Kind> kinds;
-    for (const std::string& o : outputs) {
-      kinds[o] = output_kind(o);
-      const fs::path dir =
-          fs::path(o).has_parent_path() ? fs::path(o).parent_path() : fs::path(".");
-      if (!fs::is_directory(dir))
-        throw std::runtime_error("cannot write " + o + ": directory " + dir.string() +
-                                 " does not exist");
-    }
-
-    const Progress progress{quiet};
-    progress("reading " + input);
-    const SectionSet set = read_sections(input);
-    if (!quiet)
-      for (const std::string& w : set.warnings)
-        std::cerr << "warning: " << w << "\n";
-    const std::vector<Section>& all = set.sections;
-    GuideSet guide_set;
-    if (with_guides) {
-      progress("reading guides " + a.get("guides"));
-      guide_set = read_guides(a.get("guides"));
-    }
-    GuidedLoftOptions gopt;
-    gopt.loft = opt;
-    gopt.guide_tolerance = guide_tolerance;
-    GuidedLoftResult guided;
-    // The loft of a set of sections: with guides the Gordon surface, else the section loft.
-    const auto loft_of = [&](const std::vector<Section>& secs) {
-      if (!with_guides)
-        return loft_sections(secs, opt);
-      guided = guided_loft(secs, guide_set, gopt);
-      return guided.loft;
-    };
-
-    HoldoutResult h;
-    LoftResult loft;
-    try {
-      if (study) {
-        const std::vector<size_t> out =
-            a.has("holdout")
-                ? withheld_every(all.size(), parse_int("holdout", a.get("holdout"), 2, 1000000))
-                : [&] {
-                    std::vector<size_t> v;
-                    for (int i : parse_int_list("withhold", a.get("withhold"), 0))
-                      v.push_back(static_cast<size_t>(i));
-                    return v;
-                  }();
-        progress("hold-out study: lofting " + std::to_string(all.size() - out.size()) +
-                 " sections, measuring " + std::to_string(out.size()));
-        h = holdout_study(all, out, loft_of);
-        loft = h.loft;
-      } else {
-        progress(
-            "lofting " + std::to_string(all.size()) + " sections" +
-            (with_guides ? " with " + std::to_string(guide_set.guides.size()) + " guides" : ""));
-        loft = loft_of(all);
-      }
-    } catch (const std::invalid_argument& e) {
-      throw_input_error(input, 0, e.what()); // a property of the file's sections
-    }
-    if (!quiet)
-      for (const std::string& n : loft.notes)
-        std::cerr << "note: " << n << "\n";
-
-    // Summary.
-    const BSplineSurface& S = loft.surface;
-    long points = 0;
-    for (const PreparedSection& s : loft.sections)
-      points += s.points.rows();
-    std::cout << "interlin loft " << input << "\n";
-    std::cout << "  sections     " << loft.sections.size() << " (" << points
-              << " points), correspondence "
-              << (loft.used == Correspondence::index ? "index" : "arc length") << ", start "
-              << align << "\n";
-    std::cout << "  surface      degree " << S.degree_u << " x " << S.degree_v << ", control net "
-              << S.num_u << " x " << S.num_v << ", closed around (C" << S.degree_u - 1
-              << " seam)\n";
-    std::cout << "  exactness    max |S(u_i,v_k) - P_i| = " << fmt(loft.max_deviation, 3) << " ("
-              << fmt(loft.max_deviation / loft.bbox_diagonal, 3) << " x bbox diagonal "
-              << fmt(loft.bbox_diagonal) << ")" << (with_guides ? ", sections and guides" : "")
-              << "\n";
-    if (with_guides) {
-      long inserted = 0;
-      for (const PreparedSection& p : loft.sections)
-        for (Eigen::Index src : p.source)
-          inserted += src < 0;
-      std::cout << "  guides       " << guided.guides.size() << " (";
-      for (size_t l = 0; l < guided.guides.size(); ++l)
-        std::cout << (l ? ", " : "") << guided.guides[l].id
-                  << " at u = " << fmt(guided.guides[l].u);
-      std::cout << "), " << inserted << " crossing(s) inserted into sections\n";
-      std::cout << "  guide fit    max |S(u_l,v) - G_l(v)| = " << fmt(guided.max_guide_deviation, 3)
-                << " (points and curves); input guide points within "
-                << fmt(guided.max_input_deviation, 3) << "\n";
-      const ShapeSummary sh = summarize(shape_map(to_piecewise(loft.surface),
-                                                  Eigen::VectorXd::LinSpaced(401, 0, 1).head(400),
-                                                  Eigen::VectorXd::LinSpaced(41, 0, 1)));
-      std::cout << "  shape        around: convex " << fmt(100 * sh.convex_u, 3) << "%, concave "
-                << fmt(100 * sh.concave_u, 3) << "%, flat " << fmt(100 * sh.flat_u, 3)
-                << "%; along the span: convex " << fmt(100 * sh.convex_v, 3) << "%, concave "
-                << fmt(100 * sh.concave_v, 3) << "%, flat " << fmt(100 * sh.flat_v, 3) << "%\n";
-    }
-    if (study) {
-      std::cout << "  hold-out     withheld section: max distance, rms distance\n";
-      for (size_t t = 0; t < h.test.size(); ++t) {
-        const Eigen::VectorXd& d = h.distance[t];
-        std::cout << "               " << all[h.test[t]].id << ": " << fmt(d.maxCoeff()) << ", "
-                  << fmt(std::sqrt(d.squaredNorm() / static_cast<double>(d.size()))) << "\n";
-      }
-      std::cout << "  hold-out     all " << h.test.size() << " withheld sections: max "
-                << fmt(h.max) << ", rms " << fmt(h.rms) << "\n";
-    }
-
-    // Outputs: mesh first when a mesh or preview is wanted.
-    Eigen::MatrixXd V;
-    Eigen::MatrixXi F;
-    bool need_mesh = false;
-    for (const auto& [o, k] : kinds)
-      need_mesh = need_mesh || k == Kind::mesh || k == Kind::png;
-    if (need_mesh) {
-      progress("meshing " + std::to_string(nu) + " x " + std::to_string(nv) +
-               (cap ? ", capped" : ""));
-      SurfaceMeshOptions mo;
-      mo.nu = nu;
-      mo.nv = nv;
-      mo.cap = cap;
-      mo.required_v.assign(loft.section_v.data(), loft.section_v.data() + loft.section_v.size());
-      surface_mesh(to_piecewise(S), mo, V, F);
-      const MeshReport r = check_mesh(V, F);
-      std::cout << "  mesh         " << r.vertices << " vertices, " << r.faces << " triangles, "
-                << (cap ? (r.watertight() ? "watertight" : "NOT watertight")
-                        : "open at hub and tip")
-                << ", area " << fmt(r.area, 6);
-      if (cap)
-        std::cout << ", volume " << fmt(r.volume, 6);
-      std::cout << ", min angle " << fmt(r.min_angle_deg, 3) << " deg\n";
-      if (cap && !r.watertight())
-        throw std::runtime_error("capped mesh is not watertight (boundary edges " +
-                                 std::to_string(r.boundary_edges) + ", non-manifold edges " +
-                                 std::to_string(r.nonmanifold_edges) + ")");
-    }
-    for (const std::string& o : outputs) {
-      progress("writing " + o);
-      switch (kinds.at(o)) {
-      case Kind::mesh:
-        write_mesh(o, V, F);
-        break;
-      case Kind::iges: {
-        IgesOptions io;
-        io.unit = unit;
-        io.description = "interlin loft of " + input;
-        write_iges(o, S, io);
-        break;
-      }
-      case Kind::json: {
-        std::ostringstream v;
-        v.precision(17);
-        for (Eigen::Index k = 0; k < loft.section_v.size(); ++k)
-          v << (k ? "," : "") << loft.section_v(k);
-        std::map<std::string, std::string> meta = {{"source", input},
-                                                   {"units", a.get("units", "mm")},
-                                                   {"section_v", v.str()},
-                                                   {"max_deviation", fmt(loft.max_deviation, 17)}};
-        if (with_guides) {
-          std::ostringstream ids, us;
-          us.precision(17);
-          for (size_t l = 0; l < guided.guides.size(); ++l) {
-            ids << (l ? "," : "") << guided.guides[l].id;
-            us << (l ? "," : "") << guided.guides[l].u;
-          }
-          meta["guides"] = a.get("guides");
-          meta["guide_ids"] = ids.str();
-          meta["guide_u"] = us.str();
-        }
-        write_surface_json(o, S, meta);
-        break;
-      }
-      case Kind::png: {
-        std::vector<Eigen::MatrixXd> lines;
-        for (const PreparedSection& s : loft.sections) {
-          Eigen::MatrixXd L(s.points.rows() + 1, 3);
-          L << s.points, s.points.row(0);
-          lines.push_back(L);
-        }
-        for (const GuideFit& g : guided.guides)
-          lines.push_back(g.points);
-        PreviewOptions po;
-        po.azimuth_deg = azimuth;
-        po.elevation_deg = elevation;
-        po.up = (loft.sections.back().points.colwise().mean() -
-                 loft.sections.front().points.colwise().mean())
-                    .transpose();
-        write_preview_png(o, V, F, lines, po);
-        break;
-      }
-      case Kind::report:
-        write_report(o, all, loft, study ? &h : nullptr, with_guides ? &guided : nullptr,
-                     &guide_set);
-        break;
-      }
-      written.push_back(o);
-    }
-    if (!outputs.empty()) {
-      std::cout << "  wrote        ";
-      for (size_t i = 0; i < outputs.size(); ++i)
-        std::cout << (i ? ", " : "") << outputs[i];
-      std::cout << "\n";
-    }
-    progress("done");
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "interlin loft: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    // Outputs come as a set: remove the ones this run already wrote.
-    for (const std::string& o : written)
-      std::remove(o.c_str());
-    std::cerr << "interlin: " << e.what() << "\n";
-    return 1;
-  }
+  return run_command("loft", kLoftHelp, argc, argv,
+                     {{"output", 'o', true, true},
+                      {"samples", 0, true, false},
+                      {"cap", 0, false, false},
+                      {"degree", 0, true, false},
+                      {"span-degree", 0, true, false},
+                      {"align", 0, true, false},
+                      {"match", 0, true, false},
+                      {"param", 0, true, false},
+                      {"span-param", 0, true, false},
+                      {"units", 0, true, false},
+                      {"holdout", 0, true, false},
+                      {"withhold", 0, true, false},
+                      {"view", 0, true, false},
+                      {"guides", 0, true, false},
+                      {"guide-tolerance", 0, true, false}},
+                     loft_main);
 }
 
 } // namespace interlin::cli

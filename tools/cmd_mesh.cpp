@@ -1,7 +1,7 @@
 // interlin mesh: R-function model (.rf) -> closed triangle mesh (marching cubes in parallel
 // sub-boxes, vertices projected onto F = 0), optional smoothing and edge flips, mesh files and a
 // preview.
-#include "cli_args.h"
+#include "cli_common.h"
 #include "commands.h"
 
 #include "interlin/interflatation/model.h"
@@ -13,14 +13,9 @@
 #include "interlin/reconstruction/preview.h"
 #include "interlin/reconstruction/surface_smoothing.h"
 
-#include <charconv>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
+#include <algorithm>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <thread>
 
 namespace interlin::cli {
@@ -69,15 +64,10 @@ Examples:
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-namespace fs = std::filesystem;
-
 enum class Kind { mesh, png };
 
 Kind output_kind(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext)
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off")
     return Kind::mesh;
   if (ext == ".png")
@@ -85,231 +75,153 @@ Kind output_kind(const std::string& path) {
   throw UsageError("output '" + path + "': unknown extension (use .stl .obj .ply .off .png)");
 }
 
-double to_double(const std::string& option, const std::string& text) {
-  double v = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() ||
-      !std::isfinite(v))
-    throw UsageError("--" + option + ": '" + text + "' is not a finite number");
-  return v;
-}
+// The body of `interlin mesh` (run_command handles help, exit statuses and removal on failure).
+void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
+  const std::string input = single_input(a, "model file");
+  if (a.has("resolution") && a.has("cell"))
+    throw UsageError("--resolution and --cell exclude each other");
+  ImplicitMeshOptions o;
+  o.resolution = parse_int("resolution", a.get("resolution", "128"), 1, 100000);
+  if (a.has("cell")) {
+    o.cell = parse_double("cell", a.get("cell"));
+    if (!(o.cell > 0))
+      throw UsageError("--cell: the cell size must be > 0");
+  }
+  if (a.has("box")) {
+    const std::vector<double> b = parse_double_list("box", a.get("box"));
+    if (b.size() != 6)
+      throw UsageError("--box: expected X0,Y0,Z0,X1,Y1,Z1 (6 numbers), got " +
+                       std::to_string(b.size()));
+    o.box =
+        Eigen::AlignedBox3d(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
+    if (!(b[3] > b[0] && b[4] > b[1] && b[5] > b[2]))
+      throw UsageError("--box: each upper bound must exceed its lower bound");
+  }
+  o.threads = parse_int("threads", a.get("threads", "0"), 0, 4096);
+  if (a.has("subboxes")) {
+    const std::vector<int> k = parse_int_list("subboxes", a.get("subboxes"), 1);
+    if (k.size() != 1 && k.size() != 3)
+      throw UsageError("--subboxes: expected K or KX,KY,KZ");
+    o.subboxes = k.size() == 1 ? Eigen::Array3i::Constant(k[0]) : Eigen::Array3i(k[0], k[1], k[2]);
+  }
+  o.project = !a.has("no-project");
+  const int smooth = parse_int("smooth", a.get("smooth", "0"), 0, 1000);
+  const bool flip = a.has("flip"), quiet = a.has("quiet");
+  const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
+  const ModelOptions mo = model_options(a, SettingLabel::name);
+  const std::vector<std::string> outputs = a.all("output");
+  if (outputs.empty())
+    throw UsageError("nothing to do: give -o FILE");
+  std::map<std::string, Kind> kinds;
+  for (const std::string& out : outputs) {
+    kinds[out] = output_kind(out);
+    check_output_dir(out);
+  }
 
-std::vector<double> to_doubles(const std::string& option, const std::string& text) {
-  std::vector<double> out;
-  std::string item;
-  std::istringstream in(text);
-  while (std::getline(in, item, ','))
-    out.push_back(to_double(option, item));
-  if (!text.empty() && text.back() == ',')
-    throw UsageError("--" + option + ": trailing comma in '" + text + "'");
-  return out;
-}
-
-// NAME=VALUE for --set (as interlin eval).
-std::pair<std::string, double> parse_setting(const std::string& text) {
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw UsageError("--set " + text + ": expected NAME=VALUE");
-  return {text.substr(0, eq), to_double("set " + text.substr(0, eq), text.substr(eq + 1))};
-}
-
-std::string fmt(double x, int prec = 4) {
-  std::ostringstream s;
-  s.precision(prec);
-  s << x;
-  return s.str();
+  const Progress progress{quiet};
+  progress("reading " + input);
+  const ImplicitFunction f = load_model(input, mo);
+  const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
+  // Grid limits are usage errors (the options asked for them), checked before any work.
+  try {
+    const RegularGrid g =
+        o.cell > 0 ? grid_with_cell(box, o.cell) : grid_with_resolution(box, o.resolution);
+    for (int ax = 0; ax < 3; ++ax)
+      if (o.subboxes(ax) > g.nodes(ax) - 1)
+        throw std::invalid_argument("--subboxes: " + std::to_string(o.subboxes(ax)) +
+                                    " sub-boxes along axis " + std::to_string(ax) + " but only " +
+                                    std::to_string(g.nodes(ax) - 1) + " cells");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  o.progress = progress;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  ImplicitMeshInfo info;
+  implicit_mesh(f, o, V, F, &info);
+  if (!quiet && info.nonfinite > 0)
+    std::cerr << "warning: " << info.nonfinite
+              << " sampled values were NaN or infinite (taken as outside, +inf as inside)\n";
+  if (!quiet && info.clipped > 0)
+    std::cerr << "warning: the body reaches the box at " << info.clipped
+              << " grid nodes; the mesh is cut by the box there\n";
+  if (F.rows() == 0)
+    throw_input_error(input, 0,
+                      "no surface in the box: F > 0 at none of the " +
+                          std::to_string(info.grid.size()) +
+                          " grid nodes (refine the grid or "
+                          "check the box)");
+  if (smooth > 0) {
+    progress("smoothing, " + std::to_string(smooth) + " sweeps (seed 003 functional)");
+    SurfaceSmoothingOptions so;
+    so.iterations = smooth;
+    so.threads = o.threads;
+    smooth_on_surface(f, V, F, so);
+  }
+  if (flip) {
+    progress("edge flips");
+    const long n = flip_edges(V, F);
+    progress(std::to_string(n) + " edges flipped");
+  }
+  progress("checking the mesh");
+  const MeshReport r = check_mesh(V, F);
+  const RegularGrid& g = info.grid;
+  std::cout << "interlin mesh " << input << "\n";
+  std::cout << "  box          [" << fmt(box.min()(0)) << ", " << fmt(box.max()(0)) << "] x ["
+            << fmt(box.min()(1)) << ", " << fmt(box.max()(1)) << "] x [" << fmt(box.min()(2))
+            << ", " << fmt(box.max()(2)) << "]\n";
+  std::cout << "  grid         " << g.nodes(0) << " x " << g.nodes(1) << " x " << g.nodes(2)
+            << " nodes, cell " << fmt(g.spacing(0)) << ", " << info.subboxes(0) << " x "
+            << info.subboxes(1) << " x " << info.subboxes(2) << " sub-boxes, "
+            << (o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency())))
+            << " threads\n";
+  std::cout << "  mesh         " << r.vertices << " vertices, " << r.faces << " triangles, "
+            << (r.watertight() ? "watertight" : "NOT watertight") << ", Euler " << r.euler
+            << ", genus " << r.genus << ", " << r.components << " component"
+            << (r.components == 1 ? "" : "s") << "\n";
+  std::cout << "  geometry     volume " << fmt(r.volume, 7) << ", area " << fmt(r.area, 7) << "\n";
+  std::cout << "  quality      min angle " << fmt(r.min_angle_deg, 3) << " deg, max aspect ratio "
+            << fmt(r.max_aspect_ratio, 4)
+            << (o.project ? ", vertices on F = 0" : ", vertices interpolated") << "\n";
+  if (!r.watertight())
+    throw std::runtime_error("the mesh is not watertight (boundary edges " +
+                             std::to_string(r.boundary_edges) + ", non-manifold edges " +
+                             std::to_string(r.nonmanifold_edges) + ", degenerate faces " +
+                             std::to_string(r.degenerate_faces) + ")");
+  for (const std::string& out : outputs) {
+    progress("writing " + out);
+    if (kinds.at(out) == Kind::mesh) {
+      write_mesh(out, V, F);
+    } else {
+      PreviewOptions po;
+      po.azimuth_deg = azimuth;
+      po.elevation_deg = elevation;
+      po.up = Eigen::Vector3d::UnitZ();
+      write_preview_png(out, V, F, {}, po);
+    }
+    written.push_back(out);
+  }
+  print_written(written);
+  progress("done");
 }
 
 } // namespace
 
 int run_mesh(int argc, const char* const* argv) {
-  std::vector<std::string> written;
-  try {
-    const ParsedArgs a = parse_args(argc, argv, 2,
-                                    {{"output", 'o', true, true},
-                                     {"resolution", 0, true, false},
-                                     {"cell", 0, true, false},
-                                     {"box", 0, true, false},
-                                     {"threads", 0, true, false},
-                                     {"subboxes", 0, true, false},
-                                     {"no-project", 0, false, false},
-                                     {"smooth", 0, true, false},
-                                     {"flip", 0, false, false},
-                                     {"set", 0, true, true},
-                                     {"var", 0, true, false},
-                                     {"view", 0, true, false},
-                                     {"quiet", 'q', false, false},
-                                     {"help", 'h', false, false}});
-    if (a.has("help")) {
-      std::cout << kMeshHelp;
-      return 0;
-    }
-    if (a.positional.size() != 1)
-      throw UsageError(a.positional.empty()
-                           ? "missing the model file (see --help)"
-                           : "expected one model file, got " + std::to_string(a.positional.size()));
-    const std::string input = a.positional[0];
-    if (a.has("resolution") && a.has("cell"))
-      throw UsageError("--resolution and --cell exclude each other");
-    ImplicitMeshOptions o;
-    o.resolution = parse_int("resolution", a.get("resolution", "128"), 1, 100000);
-    if (a.has("cell")) {
-      o.cell = to_double("cell", a.get("cell"));
-      if (!(o.cell > 0))
-        throw UsageError("--cell: the cell size must be > 0");
-    }
-    if (a.has("box")) {
-      const std::vector<double> b = to_doubles("box", a.get("box"));
-      if (b.size() != 6)
-        throw UsageError("--box: expected X0,Y0,Z0,X1,Y1,Z1 (6 numbers), got " +
-                         std::to_string(b.size()));
-      o.box =
-          Eigen::AlignedBox3d(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
-      if (!(b[3] > b[0] && b[4] > b[1] && b[5] > b[2]))
-        throw UsageError("--box: each upper bound must exceed its lower bound");
-    }
-    o.threads = parse_int("threads", a.get("threads", "0"), 0, 4096);
-    if (a.has("subboxes")) {
-      const std::vector<int> k = parse_int_list("subboxes", a.get("subboxes"), 1);
-      if (k.size() != 1 && k.size() != 3)
-        throw UsageError("--subboxes: expected K or KX,KY,KZ");
-      o.subboxes =
-          k.size() == 1 ? Eigen::Array3i::Constant(k[0]) : Eigen::Array3i(k[0], k[1], k[2]);
-    }
-    o.project = !a.has("no-project");
-    const int smooth = parse_int("smooth", a.get("smooth", "0"), 0, 1000);
-    const bool flip = a.has("flip"), quiet = a.has("quiet");
-    const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
-    ModelOptions mo;
-    if (a.has("var"))
-      mo.output = a.get("var");
-    if (a.has("set"))
-      for (const std::string& s : a.values.at("set")) {
-        const auto [name, v] = parse_setting(s);
-        if (mo.parameters.count(name))
-          throw UsageError("--set " + name + " given twice");
-        mo.parameters[name] = v;
-      }
-    const std::vector<std::string> outputs =
-        a.has("output") ? a.values.at("output") : std::vector<std::string>{};
-    if (outputs.empty())
-      throw UsageError("nothing to do: give -o FILE");
-    std::map<std::string, Kind> kinds;
-    for (const std::string& out : outputs) {
-      kinds[out] = output_kind(out);
-      const fs::path dir =
-          fs::path(out).has_parent_path() ? fs::path(out).parent_path() : fs::path(".");
-      if (!fs::is_directory(dir))
-        throw std::runtime_error("cannot write " + out + ": directory " + dir.string() +
-                                 " does not exist");
-    }
-
-    const auto start = Clock::now();
-    auto progress = [&](const std::string& what) {
-      if (!quiet)
-        std::fprintf(stderr, "[%7.1f ms] %s\n",
-                     std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
-                     what.c_str());
-    };
-    progress("reading " + input);
-    const ImplicitFunction f = load_model(input, mo);
-    const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
-    // Grid limits are usage errors (the options asked for them), checked before any work.
-    try {
-      const RegularGrid g =
-          o.cell > 0 ? grid_with_cell(box, o.cell) : grid_with_resolution(box, o.resolution);
-      for (int ax = 0; ax < 3; ++ax)
-        if (o.subboxes(ax) > g.nodes(ax) - 1)
-          throw std::invalid_argument("--subboxes: " + std::to_string(o.subboxes(ax)) +
-                                      " sub-boxes along axis " + std::to_string(ax) + " but only " +
-                                      std::to_string(g.nodes(ax) - 1) + " cells");
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
-    o.progress = progress;
-    Eigen::MatrixXd V;
-    Eigen::MatrixXi F;
-    ImplicitMeshInfo info;
-    implicit_mesh(f, o, V, F, &info);
-    if (!quiet && info.nonfinite > 0)
-      std::cerr << "warning: " << info.nonfinite
-                << " sampled values were NaN or infinite (taken as outside, +inf as inside)\n";
-    if (!quiet && info.clipped > 0)
-      std::cerr << "warning: the body reaches the box at " << info.clipped
-                << " grid nodes; the mesh is cut by the box there\n";
-    if (F.rows() == 0)
-      throw_input_error(input, 0,
-                        "no surface in the box: F > 0 at none of the " +
-                            std::to_string(info.grid.size()) +
-                            " grid nodes (refine the grid or "
-                            "check the box)");
-    if (smooth > 0) {
-      progress("smoothing, " + std::to_string(smooth) + " sweeps (seed 003 functional)");
-      SurfaceSmoothingOptions so;
-      so.iterations = smooth;
-      so.threads = o.threads;
-      smooth_on_surface(f, V, F, so);
-    }
-    if (flip) {
-      progress("edge flips");
-      const long n = flip_edges(V, F);
-      progress(std::to_string(n) + " edges flipped");
-    }
-    progress("checking the mesh");
-    const MeshReport r = check_mesh(V, F);
-    const RegularGrid& g = info.grid;
-    std::cout << "interlin mesh " << input << "\n";
-    std::cout << "  box          [" << fmt(box.min()(0)) << ", " << fmt(box.max()(0)) << "] x ["
-              << fmt(box.min()(1)) << ", " << fmt(box.max()(1)) << "] x [" << fmt(box.min()(2))
-              << ", " << fmt(box.max()(2)) << "]\n";
-    std::cout << "  grid         " << g.nodes(0) << " x " << g.nodes(1) << " x " << g.nodes(2)
-              << " nodes, cell " << fmt(g.spacing(0)) << ", " << info.subboxes(0) << " x "
-              << info.subboxes(1) << " x " << info.subboxes(2) << " sub-boxes, "
-              << (o.threads > 0 ? o.threads
-                                : int(std::max(1u, std::thread::hardware_concurrency())))
-              << " threads\n";
-    std::cout << "  mesh         " << r.vertices << " vertices, " << r.faces << " triangles, "
-              << (r.watertight() ? "watertight" : "NOT watertight") << ", Euler " << r.euler
-              << ", genus " << r.genus << ", " << r.components << " component"
-              << (r.components == 1 ? "" : "s") << "\n";
-    std::cout << "  geometry     volume " << fmt(r.volume, 7) << ", area " << fmt(r.area, 7)
-              << "\n";
-    std::cout << "  quality      min angle " << fmt(r.min_angle_deg, 3) << " deg, max aspect ratio "
-              << fmt(r.max_aspect_ratio, 4)
-              << (o.project ? ", vertices on F = 0" : ", vertices interpolated") << "\n";
-    if (!r.watertight())
-      throw std::runtime_error("the mesh is not watertight (boundary edges " +
-                               std::to_string(r.boundary_edges) + ", non-manifold edges " +
-                               std::to_string(r.nonmanifold_edges) + ", degenerate faces " +
-                               std::to_string(r.degenerate_faces) + ")");
-    for (const std::string& out : outputs) {
-      progress("writing " + out);
-      if (kinds.at(out) == Kind::mesh) {
-        write_mesh(out, V, F);
-      } else {
-        PreviewOptions po;
-        po.azimuth_deg = azimuth;
-        po.elevation_deg = elevation;
-        po.up = Eigen::Vector3d::UnitZ();
-        write_preview_png(out, V, F, {}, po);
-      }
-      written.push_back(out);
-    }
-    std::cout << "  wrote        ";
-    for (size_t i = 0; i < outputs.size(); ++i)
-      std::cout << (i ? ", " : "") << outputs[i];
-    std::cout << "\n";
-    progress("done");
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "interlin mesh: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    for (const std::string& out : written)
-      std::remove(out.c_str());
-    std::cerr << "interlin: " << e.what() << "\n";
-    return 1;
-  }
+  return run_command("mesh", kMeshHelp, argc, argv,
+                     {{"output", 'o', true, true},
+                      {"resolution", 0, true, false},
+                      {"cell", 0, true, false},
+                      {"box", 0, true, false},
+                      {"threads", 0, true, false},
+                      {"subboxes", 0, true, false},
+                      {"no-project", 0, false, false},
+                      {"smooth", 0, true, false},
+                      {"flip", 0, false, false},
+                      {"set", 0, true, true},
+                      {"var", 0, true, false},
+                      {"view", 0, true, false}},
+                     mesh_main);
 }
 
 } // namespace interlin::cli

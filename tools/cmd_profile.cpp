@@ -1,6 +1,6 @@
 // interlin profile: the 13 cascade parameters (seed 004 §4.1–4.2) -> blade profile(s) as a
 // section CSV, one profile or a span stack that `interlin loft` accepts.
-#include "cli_args.h"
+#include "cli_common.h"
 #include "commands.h"
 
 #include "interlin/reconstruction/atomic_file.h"
@@ -13,9 +13,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -57,7 +55,6 @@ Examples:
 
 namespace {
 
-namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 // JSON key -> field of CascadeParameters, in the book's order.
@@ -220,155 +217,123 @@ ProfileJob read_profile_json(const std::string& path) {
   return job;
 }
 
-std::string fmt(double x, int prec = 6) {
-  std::ostringstream s;
-  s.precision(prec);
-  s << x;
-  return s.str();
-}
-
-void check_output_dir(const std::string& o) {
-  const fs::path dir = fs::path(o).has_parent_path() ? fs::path(o).parent_path() : fs::path(".");
-  if (!fs::is_directory(dir))
-    throw std::runtime_error("cannot write " + o + ": directory " + dir.string() +
-                             " does not exist");
-}
-
 void require_csv(const std::string& option, const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext != ".csv")
+  if (lower_extension(path) != ".csv")
     throw UsageError(option + " '" + path + "': expected a .csv file");
+}
+
+// The body of `interlin profile` (run_command handles help, exit statuses and removal on
+// failure).
+void profile_main(const ParsedArgs& a, std::vector<std::string>& written) {
+  const std::string input = single_input(a, "parameter file");
+  if (!a.has("output"))
+    throw UsageError("nothing to do: give -o SECTIONS.csv");
+  const std::string output = a.get("output");
+  require_csv("output", output);
+  const std::string curv = a.get("curvature");
+  if (a.has("curvature"))
+    require_csv("--curvature", curv);
+  std::string joint, stack;
+  if (a.has("joint"))
+    joint = parse_choice("joint", a.get("joint"), {"g2", "g3"});
+  if (a.has("stack"))
+    stack = parse_choice("stack", a.get("stack"), {"centroid", "le", "te", "none"});
+  std::pair<int, int> points{0, 0};
+  if (a.has("points")) {
+    points = parse_int_pair("points", a.get("points"), 2, 100000);
+    if (points.first < 4 || points.second % 2 != 0)
+      throw UsageError("--points SIDE,EDGE: SIDE must be >= 4 and EDGE even");
+  }
+  const bool quiet = a.has("quiet");
+  check_output_dir(output);
+  if (a.has("curvature"))
+    check_output_dir(curv);
+
+  if (!quiet)
+    std::cerr << "reading " << input << "\n";
+  ProfileJob job = read_profile_json(input);
+  if (!joint.empty())
+    job.options.joint = joint == "g2" ? CascadeJoint::g2_quadratic : CascadeJoint::g3_cubic;
+  if (!stack.empty())
+    job.align = kAligns.at(stack);
+  if (points.first > 0) {
+    job.options.side_intervals = points.first;
+    job.options.edge_intervals = points.second;
+  }
+
+  std::vector<Section> sections;
+  std::vector<CascadeProfile> profiles;
+  try {
+    std::vector<Eigen::MatrixXd> S;
+    if (job.has_span) {
+      S = stack_cascade_profiles(job.stations, job.align, job.options, &profiles);
+    } else { // one profile in the cascade frame, z = 0
+      profiles.push_back(cascade_profile(job.stations[0].parameters, job.options));
+      S.emplace_back(profiles[0].points.rows(), 3);
+      S[0] << profiles[0].points, Eigen::VectorXd::Zero(profiles[0].points.rows());
+    }
+    for (size_t k = 0; k < S.size(); ++k) {
+      Section s;
+      s.id = std::to_string(k);
+      s.points = S[k];
+      sections.push_back(s);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw_input_error(input, 0, e.what()); // a property of the file's parameters
+  } catch (const std::runtime_error& e) {
+    throw_input_error(input, 0, e.what());
+  }
+
+  std::cout << "interlin profile " << input << "\n";
+  std::cout << "  sections     " << sections.size() << " x " << sections[0].points.rows()
+            << " points, joint "
+            << (job.options.joint == CascadeJoint::g3_cubic ? "G3 (cubic, §4.2)"
+                                                            : "G2 (quadratic, §4.1)")
+            << "\n";
+  for (size_t k = 0; k < profiles.size(); ++k) {
+    const CascadeProfile& P = profiles[k];
+    const auto len = [](const std::vector<PlanarNaturalCurve>& side) {
+      return side[0].length + side[1].length;
+    };
+    std::cout << "  section " << k << "    z " << fmt(job.stations[k].radius, 6) << ", pitch "
+              << fmt(P.pitch, 6) << ", throat " << fmt(P.throat, 6) << ", suction "
+              << fmt(len(P.suction), 6) << ", pressure " << fmt(len(P.pressure), 6) << ", max miss "
+              << fmt(P.miss, 2) << "\n";
+  }
+
+  write_sections_csv(output, sections);
+  written.push_back(output);
+  if (a.has("curvature")) {
+    write_file_atomically(curv, [&](std::ostream& out) {
+      out.precision(17);
+      out << "section,side,sbar,s,x,y,phi,k,dk\n";
+      for (size_t k = 0; k < profiles.size(); ++k)
+        for (const auto& [name, side] : {std::pair{"suction", &profiles[k].suction},
+                                         std::pair{"pressure", &profiles[k].pressure}}) {
+          const Eigen::MatrixXd T = side_curvature_plot(*side, 201);
+          for (Eigen::Index i = 0; i < T.rows(); ++i) {
+            out << k << ',' << name;
+            for (Eigen::Index c = 0; c < T.cols(); ++c)
+              out << ',' << T(i, c);
+            out << '\n';
+          }
+        }
+    });
+    written.push_back(curv);
+  }
+  print_written(written);
 }
 
 } // namespace
 
 int run_profile(int argc, const char* const* argv) {
-  std::vector<std::string> written;
-  try {
-    const ParsedArgs a = parse_args(argc, argv, 2,
-                                    {{"output", 'o', true, false},
-                                     {"joint", 0, true, false},
-                                     {"points", 0, true, false},
-                                     {"stack", 0, true, false},
-                                     {"curvature", 0, true, false},
-                                     {"quiet", 'q', false, false},
-                                     {"help", 'h', false, false}});
-    if (a.has("help")) {
-      std::cout << kProfileHelp;
-      return 0;
-    }
-    if (a.positional.size() != 1)
-      throw UsageError(a.positional.empty() ? "missing the parameter file (see --help)"
-                                            : "expected one parameter file, got " +
-                                                  std::to_string(a.positional.size()));
-    if (!a.has("output"))
-      throw UsageError("nothing to do: give -o SECTIONS.csv");
-    const std::string input = a.positional[0], output = a.get("output");
-    require_csv("output", output);
-    const std::string curv = a.get("curvature");
-    if (a.has("curvature"))
-      require_csv("--curvature", curv);
-    std::string joint, stack;
-    if (a.has("joint"))
-      joint = parse_choice("joint", a.get("joint"), {"g2", "g3"});
-    if (a.has("stack"))
-      stack = parse_choice("stack", a.get("stack"), {"centroid", "le", "te", "none"});
-    std::pair<int, int> points{0, 0};
-    if (a.has("points")) {
-      points = parse_int_pair("points", a.get("points"), 2, 100000);
-      if (points.first < 4 || points.second % 2 != 0)
-        throw UsageError("--points SIDE,EDGE: SIDE must be >= 4 and EDGE even");
-    }
-    const bool quiet = a.has("quiet");
-    check_output_dir(output);
-    if (a.has("curvature"))
-      check_output_dir(curv);
-
-    if (!quiet)
-      std::cerr << "reading " << input << "\n";
-    ProfileJob job = read_profile_json(input);
-    if (!joint.empty())
-      job.options.joint = joint == "g2" ? CascadeJoint::g2_quadratic : CascadeJoint::g3_cubic;
-    if (!stack.empty())
-      job.align = kAligns.at(stack);
-    if (points.first > 0) {
-      job.options.side_intervals = points.first;
-      job.options.edge_intervals = points.second;
-    }
-
-    std::vector<Section> sections;
-    std::vector<CascadeProfile> profiles;
-    try {
-      std::vector<Eigen::MatrixXd> S;
-      if (job.has_span) {
-        S = stack_cascade_profiles(job.stations, job.align, job.options, &profiles);
-      } else { // one profile in the cascade frame, z = 0
-        profiles.push_back(cascade_profile(job.stations[0].parameters, job.options));
-        S.emplace_back(profiles[0].points.rows(), 3);
-        S[0] << profiles[0].points, Eigen::VectorXd::Zero(profiles[0].points.rows());
-      }
-      for (size_t k = 0; k < S.size(); ++k) {
-        Section s;
-        s.id = std::to_string(k);
-        s.points = S[k];
-        sections.push_back(s);
-      }
-    } catch (const std::invalid_argument& e) {
-      throw_input_error(input, 0, e.what()); // a property of the file's parameters
-    } catch (const std::runtime_error& e) {
-      throw_input_error(input, 0, e.what());
-    }
-
-    std::cout << "interlin profile " << input << "\n";
-    std::cout << "  sections     " << sections.size() << " x " << sections[0].points.rows()
-              << " points, joint "
-              << (job.options.joint == CascadeJoint::g3_cubic ? "G3 (cubic, §4.2)"
-                                                              : "G2 (quadratic, §4.1)")
-              << "\n";
-    for (size_t k = 0; k < profiles.size(); ++k) {
-      const CascadeProfile& P = profiles[k];
-      const auto len = [](const std::vector<PlanarNaturalCurve>& side) {
-        return side[0].length + side[1].length;
-      };
-      std::cout << "  section " << k << "    z " << fmt(job.stations[k].radius) << ", pitch "
-                << fmt(P.pitch) << ", throat " << fmt(P.throat) << ", suction "
-                << fmt(len(P.suction)) << ", pressure " << fmt(len(P.pressure)) << ", max miss "
-                << fmt(P.miss, 2) << "\n";
-    }
-
-    write_sections_csv(output, sections);
-    written.push_back(output);
-    if (a.has("curvature")) {
-      write_file_atomically(curv, [&](std::ostream& out) {
-        out.precision(17);
-        out << "section,side,sbar,s,x,y,phi,k,dk\n";
-        for (size_t k = 0; k < profiles.size(); ++k)
-          for (const auto& [name, side] : {std::pair{"suction", &profiles[k].suction},
-                                           std::pair{"pressure", &profiles[k].pressure}}) {
-            const Eigen::MatrixXd T = side_curvature_plot(*side, 201);
-            for (Eigen::Index i = 0; i < T.rows(); ++i) {
-              out << k << ',' << name;
-              for (Eigen::Index c = 0; c < T.cols(); ++c)
-                out << ',' << T(i, c);
-              out << '\n';
-            }
-          }
-      });
-      written.push_back(curv);
-    }
-    std::cout << "  wrote        " << output << (a.has("curvature") ? ", " + curv : "") << "\n";
-    return 0;
-  } catch (const UsageError& e) {
-    std::cerr << "interlin profile: " << e.what() << "\n";
-    return 2;
-  } catch (const std::exception& e) {
-    for (const std::string& o : written)
-      std::remove(o.c_str());
-    std::cerr << "interlin: " << e.what() << "\n";
-    return 1;
-  }
+  return run_command("profile", kProfileHelp, argc, argv,
+                     {{"output", 'o', true, false},
+                      {"joint", 0, true, false},
+                      {"points", 0, true, false},
+                      {"stack", 0, true, false},
+                      {"curvature", 0, true, false}},
+                     profile_main);
 }
 
 } // namespace interlin::cli

@@ -1,12 +1,12 @@
 // Guide-line CSV reader (docs/formats.md, "Guide files").
 #include "interlin/reconstruction/guide_csv.h"
 
+#include "csv_fields.h"
+
 #include "interlin/reconstruction/input_error.h"
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
-#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -35,58 +35,6 @@ std::vector<string_view> split(string_view line) {
       return out;
     start = c + 1;
   }
-}
-
-std::string lower(string_view s) {
-  std::string r(s);
-  for (char& c : r)
-    if (c >= 'A' && c <= 'Z')
-      c = static_cast<char>(c - 'A' + 'a');
-  return r;
-}
-
-// Strict number: the whole field, an optional single leading '+'. Messages as for section files.
-double parse_number(string_view tok, const std::string& path, long line, const char* column) {
-  string_view t = tok;
-  bool ok = !t.empty();
-  if (ok && t.front() == '+') {
-    t.remove_prefix(1);
-    ok = !t.empty() && t.front() != '+' && t.front() != '-';
-  }
-  double v = 0;
-  if (ok) {
-    const char* end = t.data() + t.size();
-    const auto [p, ec] = std::from_chars(t.data(), end, v, std::chars_format::general);
-    if (p == end && ec == std::errc::result_out_of_range)
-      throw_input_error(path, line,
-                        std::string("column ") + column + ": '" + std::string(tok) +
-                            "' is out of the range of a double");
-    ok = p == end && ec == std::errc();
-  }
-  if (!ok)
-    throw_input_error(path, line,
-                      std::string("column ") + column + ": '" + std::string(tok) +
-                          "' is not a number");
-  if (!std::isfinite(v))
-    throw_input_error(path, line,
-                      std::string("column ") + column + ": '" + std::string(tok) +
-                          "' is not a finite value (NaN and infinity are not allowed)");
-  return v;
-}
-
-long parse_index(string_view tok, const std::string& path, long line) {
-  string_view t = tok;
-  bool ok = true;
-  if (!t.empty() && t.front() == '+') {
-    t.remove_prefix(1);
-    ok = !t.empty() && t.front() != '-';
-  }
-  long v = 0;
-  const char* end = t.data() + t.size();
-  const auto [p, ec] = std::from_chars(t.data(), end, v);
-  if (!ok || t.empty() || ec != std::errc() || p != end)
-    throw_input_error(path, line, "column index: '" + std::string(tok) + "' is not an integer");
-  return v;
 }
 
 struct Row {
@@ -121,7 +69,7 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
       header = true;
       nfields = f.size();
       for (size_t i = 0; i < f.size(); ++i) {
-        const std::string name = lower(f[i]);
+        const std::string name = ascii_lower(f[i]);
         int* slot = name == "guide"   ? &col_guide
                     : name == "index" ? &col_index
                     : name == "x"     ? &col_xyz[0]
@@ -159,9 +107,9 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
     Row r{lineno, 0, {}};
     const char* names[3] = {"x", "y", "z"};
     for (int c = 0; c < 3; ++c)
-      r.p(c) = parse_number(f[static_cast<size_t>(col_xyz[c])], path, lineno, names[c]);
+      r.p(c) = field_number(f[static_cast<size_t>(col_xyz[c])], path, lineno, names[c]);
     if (col_index >= 0)
-      r.index = parse_index(f[static_cast<size_t>(col_index)], path, lineno);
+      r.index = field_index(f[static_cast<size_t>(col_index)], path, lineno);
     if (!rows.count(id))
       order.push_back(id);
     else if (col_index < 0 && previous != id)

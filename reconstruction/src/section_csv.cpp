@@ -1,5 +1,7 @@
 #include "interlin/reconstruction/section_csv.h"
 
+#include "csv_fields.h"
+
 #include "interlin/reconstruction/atomic_file.h"
 #include "interlin/reconstruction/input_error.h"
 
@@ -7,7 +9,6 @@
 #include <array>
 #include <cerrno>
 #include <charconv>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <istream>
@@ -35,49 +36,8 @@ string_view trim(string_view s) {
   return s;
 }
 
-std::string lower(string_view s) {
-  std::string r(s);
-  for (char& c : r)
-    if (c >= 'A' && c <= 'Z')
-      c = static_cast<char>(c - 'A' + 'a');
-  return r;
-}
-
 std::string quote(string_view s) {
   return "'" + std::string(s) + "'";
-}
-
-enum class Num { ok, not_number, out_of_range, not_finite };
-
-// The whole token must be one number; a single leading '+' is accepted.
-Num parse_double(string_view tok, double& v) {
-  if (!tok.empty() && tok.front() == '+') {
-    tok.remove_prefix(1);
-    if (tok.empty() || tok.front() == '+' || tok.front() == '-')
-      return Num::not_number;
-  }
-  if (tok.empty())
-    return Num::not_number;
-  const char* end = tok.data() + tok.size();
-  const auto [p, ec] = std::from_chars(tok.data(), end, v, std::chars_format::general);
-  if (p != end)
-    return Num::not_number;
-  if (ec == std::errc::result_out_of_range)
-    return Num::out_of_range;
-  if (ec != std::errc())
-    return Num::not_number;
-  return std::isfinite(v) ? Num::ok : Num::not_finite;
-}
-
-bool parse_long(string_view tok, long& v) {
-  if (!tok.empty() && tok.front() == '+') {
-    tok.remove_prefix(1);
-    if (tok.empty() || tok.front() == '-')
-      return false;
-  }
-  const char* end = tok.data() + tok.size();
-  const auto [p, ec] = std::from_chars(tok.data(), end, v);
-  return !tok.empty() && ec == std::errc() && p == end;
 }
 
 // Comma-separated fields, each trimmed.
@@ -193,7 +153,7 @@ private:
     split_plain(first, fields_);
     double v;
     const bool numeric = std::any_of(fields_.begin(), fields_.end(), [&](string_view f) {
-      return parse_double(f, v) != Num::not_number;
+      return parse_strict_double(f, v) != NumberKind::not_number;
     });
     if (numeric) {
       if (fields_.size() != 3)
@@ -211,7 +171,7 @@ private:
     if (has_comma) {
       split_csv(first, fields_);
       for (string_view f : fields_)
-        names.push_back(lower(f));
+        names.push_back(ascii_lower(f));
     }
     if (std::find(names.begin(), names.end(), "section") != names.end()) {
       csv_ = true;
@@ -222,7 +182,7 @@ private:
     split_plain(first, fields_);
     names.clear();
     for (string_view f : fields_)
-      names.push_back(lower(f));
+      names.push_back(ascii_lower(f));
     if (std::find(names.begin(), names.end(), "section") != names.end())
       fail(line, "the header names a section column but has no commas: section files are "
                  "comma-separated");
@@ -264,29 +224,12 @@ private:
                      "optional, other columns ignored)");
   }
 
-  double number(string_view tok, const char* column, long line) const {
-    double v = 0;
-    switch (parse_double(tok, v)) {
-    case Num::ok:
-      return v;
-    case Num::not_number:
-      fail(line, std::string("column ") + column + ": " + quote(tok) + " is not a number");
-    case Num::out_of_range:
-      fail(line, std::string("column ") + column + ": " + quote(tok) +
-                     " is out of the range of a double");
-    case Num::not_finite:
-      break;
-    }
-    fail(line, std::string("column ") + column + ": " + quote(tok) +
-                   " is not a finite value (NaN and infinity are not allowed)");
-  }
-
   RawPoint point(long line) const {
     RawPoint p{};
     p.line = line;
-    p.x = number(fields_[col_[0]], "x", line);
-    p.y = number(fields_[col_[1]], "y", line);
-    p.z = number(fields_[col_[2]], "z", line);
+    p.x = field_number(fields_[col_[0]], path_, line, "x");
+    p.y = field_number(fields_[col_[1]], path_, line, "y");
+    p.z = field_number(fields_[col_[2]], path_, line, "z");
     return p;
   }
 
@@ -309,8 +252,8 @@ private:
       if (id.empty())
         fail(n, "column section: empty value");
       RawPoint p = point(n);
-      if (index_col_ != npos && !parse_long(fields_[index_col_], p.index))
-        fail(n, "column index: " + quote(fields_[index_col_]) + " is not an integer");
+      if (index_col_ != npos)
+        p.index = field_index(fields_[index_col_], path_, n);
       if (cur == npos || sections_[cur].id != id) {
         const auto [it, added] = by_id.try_emplace(std::string(id), sections_.size());
         if (added) {
@@ -368,7 +311,7 @@ private:
     std::vector<double> key(sections_.size());
     bool numeric = true;
     for (size_t i = 0; i < sections_.size() && numeric; ++i)
-      numeric = parse_double(sections_[i].id, key[i]) == Num::ok;
+      numeric = parse_strict_double(sections_[i].id, key[i]) == NumberKind::ok;
     std::vector<size_t> perm(sections_.size());
     for (size_t i = 0; i < perm.size(); ++i)
       perm[i] = i;

@@ -1,47 +1,20 @@
 // The interlin executable as a user meets it: outputs, summaries, and one clear error line with
 // a non-zero exit and no output file for every kind of bad input.
+#include "support/cli_runner.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
 
-#include <cstdlib>
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
 
+using namespace interlin::test;
+
 namespace {
-
-struct Run {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Run run(const interlin::test::TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(INTERLIN_CLI) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(cmd.c_str());
-  Run r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
-
-void write(const std::string& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
 
 // A valid 3-section CSV body (square-ish profiles at z = 0, 1, 2).
 std::string good_csv() {
@@ -59,41 +32,37 @@ std::string good_csv() {
 
 // Exactly one line on stderr, starting with "interlin: " and containing `what`; exit 1; the
 // directory holds nothing but the input file(s) (no output, no temporary).
-void expect_one_error(const interlin::test::TempDir& d, const Run& r, const std::string& what,
-                      size_t files = 1) {
+void expect_one_error(const TempDir& d, const Run& r, const std::string& what, size_t files = 1) {
   INFO("stderr: " << r.err);
   CHECK(r.status == 1);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK_THAT(r.err, Catch::StartsWith("interlin: ") && Catch::Contains(what));
-  size_t n = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d.path()))
-    ++n;
-  CHECK(n == files);
+  CHECK(files_in(d) == files);
 }
 
 } // namespace
 
 TEST_CASE("CLI: help and usage errors", "[cli]") {
-  interlin::test::TempDir d("cli");
-  Run r = run(d, "--help");
+  TempDir d("cli");
+  Run r = run("--help");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("interlin loft"));
-  r = run(d, "loft --help");
+  r = run("loft --help");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("--samples NU,NV") && Catch::Contains("--align first|le|te"));
-  r = run(d, "");
+  r = run("");
   CHECK(r.status == 2);
-  r = run(d, "frobnicate");
+  r = run("frobnicate");
   CHECK(r.status == 2);
   CHECK_THAT(r.err, Catch::Contains("unknown command"));
-  write(d / "s.csv", good_csv());
+  write_file(d / "s.csv", good_csv());
   for (const std::string& bad :
        std::vector<std::string>{"loft " + (d / "s.csv") + " -o x.stl --bogus",
                                 "loft " + (d / "s.csv") + " -o x.stl --samples 2,9",
                                 "loft " + (d / "s.csv") + " -o x.xyz",
                                 "loft " + (d / "s.csv") + " -o x.stl --align middle",
                                 "loft " + (d / "s.csv"), std::string("loft -o x.stl")}) {
-    r = run(d, bad);
+    r = run(bad);
     INFO(bad << " -> " << r.err);
     CHECK(r.status == 2);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
@@ -101,10 +70,10 @@ TEST_CASE("CLI: help and usage errors", "[cli]") {
 }
 
 TEST_CASE("CLI: the main job writes every output and reports exactness", "[cli]") {
-  interlin::test::TempDir d("cli");
-  const Run r = run(d, "loft " INTERLIN_DATA_DIR "/rotor37/sections.csv -o " + (d / "b.stl") +
-                           " -o " + (d / "b.igs") + " -o " + (d / "b.json") + " -o " +
-                           (d / "b.png") + " -o " + (d / "b.obj") + " --units cm --cap -q");
+  TempDir d("cli");
+  const Run r = run("loft " INTERLIN_DATA_DIR "/rotor37/sections.csv -o " + (d / "b.stl") + " -o " +
+                    (d / "b.igs") + " -o " + (d / "b.json") + " -o " + (d / "b.png") + " -o " +
+                    (d / "b.obj") + " --units cm --cap -q");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.empty()); // -q: nothing on stderr
@@ -114,30 +83,30 @@ TEST_CASE("CLI: the main job writes every output and reports exactness", "[cli]"
   CHECK(slurp(d / "b.png").substr(1, 3) == "PNG");
   CHECK(slurp(d / "b.igs").find("128,") != std::string::npos);
   // Deterministic: the same run gives the same bytes.
-  interlin::test::TempDir e("cli");
-  REQUIRE(run(e, "loft " INTERLIN_DATA_DIR "/rotor37/sections.csv -o " + (e / "b.stl") + " -o " +
-                     (e / "b.png") + " --cap -q")
+  TempDir e("cli");
+  REQUIRE(run("loft " INTERLIN_DATA_DIR "/rotor37/sections.csv -o " + (e / "b.stl") + " -o " +
+              (e / "b.png") + " --cap -q")
               .status == 0);
   CHECK(slurp(d / "b.stl") == slurp(e / "b.stl"));
   CHECK(slurp(d / "b.png") == slurp(e / "b.png"));
 }
 
 TEST_CASE("CLI: hold-out study prints per-section and overall distances", "[cli]") {
-  interlin::test::TempDir d("cli");
-  const Run r = run(d, "loft " INTERLIN_DATA_DIR "/rotor37/sections.csv --holdout 2 -o " +
-                           (d / "h.csv") + " -q");
+  TempDir d("cli");
+  const Run r = run("loft " INTERLIN_DATA_DIR "/rotor37/sections.csv --holdout 2 -o " +
+                    (d / "h.csv") + " -q");
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("all 6 withheld sections: max 0.019"));
   const std::string report = slurp(d / "h.csv");
   CHECK(std::count(report.begin(), report.end(), '\n') == 1 + 6 * 198);
   CHECK_THAT(report, Catch::StartsWith("section,index,line,x,y,z,distance\n"));
-  const Run w = run(d, "loft " INTERLIN_DATA_DIR "/rotor37/sections.csv --withhold 5 -q");
+  const Run w = run("loft " INTERLIN_DATA_DIR "/rotor37/sections.csv --withhold 5 -q");
   CHECK(w.status == 0);
   CHECK_THAT(w.out, Catch::Contains("all 1 withheld sections"));
 }
 
 TEST_CASE("CLI: bad input gives one error line naming file and line, exit 1, no output", "[cli]") {
-  interlin::test::TempDir d("cli");
+  TempDir d("cli");
   const std::string in = d / "s.csv", out = " -o " + (d / "o.stl") + " -o " + (d / "o.igs");
   struct Case {
     std::string name, content, expect;
@@ -168,22 +137,22 @@ TEST_CASE("CLI: bad input gives one error line naming file and line, exit 1, no 
   };
   for (const Case& c : cases) {
     INFO(c.name);
-    write(in, c.content);
-    expect_one_error(d, run(d, "loft " + in + out + " -q"), c.expect);
+    write_file(in, c.content);
+    expect_one_error(d, run("loft " + in + out + " -q"), c.expect);
   }
   fs::remove(in);
-  expect_one_error(d, run(d, "loft " + (d / "missing.csv") + out + " -q"),
-                   "missing.csv: cannot open", 0);
+  expect_one_error(d, run("loft " + (d / "missing.csv") + out + " -q"), "missing.csv: cannot open",
+                   0);
   // A degree the sections cannot carry is a property of the file: named with the file.
-  write(in, good_csv());
-  expect_one_error(d, run(d, "loft " + in + out + " --degree 7 -q"), "s.csv: ");
+  write_file(in, good_csv());
+  expect_one_error(d, run("loft " + in + out + " --degree 7 -q"), "s.csv: ");
   // Unwritable output: nothing is written, not even the outputs that could be.
-  expect_one_error(d, run(d, "loft " + in + " -o " + (d / "o.stl") + " -o " + (d / "no/dir/o.igs")),
+  expect_one_error(d, run("loft " + in + " -o " + (d / "o.stl") + " -o " + (d / "no/dir/o.igs")),
                    "no/dir");
 }
 
 TEST_CASE("CLI: repeated points are dropped with a warning naming the line", "[cli]") {
-  interlin::test::TempDir d("cli");
+  TempDir d("cli");
   // No index column: file order. Line 9 repeats line 8 (section 1, second point).
   std::string csv = "section,x,y,z\n";
   const char* profile[] = {"1,0", "0.5,0.8", "-0.5,0.8", "-1,0", "-0.5,-0.8", "0.5,-0.8"};
@@ -193,8 +162,8 @@ TEST_CASE("CLI: repeated points are dropped with a warning naming the line", "[c
       if (k == 1 && i == 1)
         csv += std::to_string(k) + "," + profile[i] + "," + std::to_string(k) + "\n";
     }
-  write(d / "s.csv", csv);
-  const Run r = run(d, "loft " + (d / "s.csv") + " -o " + (d / "o.json"));
+  write_file(d / "s.csv", csv);
+  const Run r = run("loft " + (d / "s.csv") + " -o " + (d / "o.json"));
   INFO(r.err);
   CHECK(r.status == 0);
   CHECK_THAT(r.err, Catch::Contains("warning: ") && Catch::Contains("s.csv:10:"));

@@ -1,48 +1,21 @@
 // interlin eval as a user meets it: values (and gradients) at the points of a CSV file, parameter
 // overrides, and one error line with FILE:LINE (points) or FILE:LINE:COLUMN (model) and exit 1.
+#include "support/cli_runner.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
 namespace fs = std::filesystem;
 
+using namespace interlin::test;
+
 namespace {
-
-struct Run {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs `interlin ARGS` (error cases add -q so that stderr holds only the error line).
-Run run(const interlin::test::TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(INTERLIN_CLI) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(cmd.c_str());
-  Run r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
-
-void write(const std::string& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
 
 std::string model(const std::string& name) {
   return std::string(INTERLIN_DATA_DIR) + "/models/" + name;
@@ -74,10 +47,10 @@ void expect_error(const Run& r, int status, const std::string& what) {
 } // namespace
 
 TEST_CASE("CLI eval: values and gradients of the impeller at digest points", "[cli][eval]") {
-  interlin::test::TempDir d("eval");
+  TempDir d("eval");
   // any column order, extra columns ignored, comments and blank lines skipped
-  write(d / "p.csv", "# points\nid,z,x,y\n\na,2,10,0\nb,0,0,0\nc,2,0.5,0\n");
-  Run r = run(d, "eval " + model("impeller.rf") + " " + d / "p.csv -q");
+  write_file(d / "p.csv", "# points\nid,z,x,y\n\na,2,10,0\nb,0,0,0\nc,2,0.5,0\n");
+  Run r = run("eval " + model("impeller.rf") + " " + d / "p.csv -q");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.empty());
@@ -89,7 +62,7 @@ TEST_CASE("CLI eval: values and gradients of the impeller at digest points", "[c
   CHECK(std::stod(t[2][3]) == Approx(0.2744834).margin(5e-8));
   CHECK(std::stod(t[3][3]) == Approx(-0.3914788).margin(5e-8));
   // with the gradient, into a file
-  r = run(d, "eval " + model("impeller.rf") + " " + d / "p.csv --gradient -o " + d / "v.csv");
+  r = run("eval " + model("impeller.rf") + " " + d / "p.csv --gradient -o " + d / "v.csv");
   REQUIRE(r.status == 0);
   CHECK(r.out.empty());
   CHECK_THAT(r.err, Catch::Contains("evaluating at 3 points")); // progress on stderr
@@ -101,29 +74,29 @@ TEST_CASE("CLI eval: values and gradients of the impeller at digest points", "[c
 }
 
 TEST_CASE("CLI eval: --set and --var", "[cli][eval]") {
-  interlin::test::TempDir d("eval");
-  const Run h = run(d, "eval --help");
+  TempDir d("eval");
+  const Run h = run("eval --help");
   CHECK(h.status == 0);
   CHECK_THAT(h.out, Catch::Contains("Usage: interlin eval MODEL.rf POINTS.csv"));
-  CHECK_THAT(run(d, "--help").out, Catch::Contains("interlin eval MODEL.rf POINTS.csv"));
-  write(d / "p.csv", "x,y,z\n0,-14.5,2\n");
-  Run r = run(d, "eval " + model("car.rf") + " " + d / "p.csv --var fig5 -q");
+  CHECK_THAT(run("--help").out, Catch::Contains("interlin eval MODEL.rf POINTS.csv"));
+  write_file(d / "p.csv", "x,y,z\n0,-14.5,2\n");
+  Run r = run("eval " + model("car.rf") + " " + d / "p.csv --var fig5 -q");
   REQUIRE(r.status == 0);
   CHECK(std::stod(rows(r.out)[1][3]) > 0); // Fig. 5a trunk reaches y = -14.5
-  r = run(d, "eval " + model("car.rf") + " " + d / "p.csv --var fig5 -q --set y2=14 --set a1=9");
+  r = run("eval " + model("car.rf") + " " + d / "p.csv --var fig5 -q --set y2=14 --set a1=9");
   REQUIRE(r.status == 0);
   CHECK(std::stod(rows(r.out)[1][3]) < 0); // Fig. 5b trunk ends at y = -14
-  expect_error(run(d, "eval " + model("car.rf") + " " + d / "p.csv --set yy=1 -q"), 1,
+  expect_error(run("eval " + model("car.rf") + " " + d / "p.csv --set yy=1 -q"), 1,
                "interlin: " + model("car.rf") + ": parameter 'yy' is not declared");
-  expect_error(run(d, "eval " + model("car.rf") + " " + d / "p.csv --var nothing -q"), 1,
+  expect_error(run("eval " + model("car.rf") + " " + d / "p.csv --var nothing -q"), 1,
                "does not assign the output variable 'nothing'");
-  expect_error(run(d, "eval " + model("car.rf") + " " + d / "p.csv --set y2 -q"), 2,
+  expect_error(run("eval " + model("car.rf") + " " + d / "p.csv --set y2 -q"), 2,
                "interlin eval: --set y2: expected NAME=VALUE");
-  expect_error(run(d, "eval " + model("car.rf") + " -q"), 2, "expected MODEL.rf POINTS.csv");
+  expect_error(run("eval " + model("car.rf") + " -q"), 2, "expected MODEL.rf POINTS.csv");
 }
 
 TEST_CASE("CLI eval: bad points and bad models give one error line", "[cli][eval]") {
-  interlin::test::TempDir d("eval");
+  TempDir d("eval");
   const std::string m = model("uav.rf");
   struct Case {
     std::string points, message;
@@ -141,18 +114,17 @@ TEST_CASE("CLI eval: bad points and bad models give one error line", "[cli][eval
   };
   for (const Case& c : cases) {
     INFO(c.points);
-    write(d / "p.csv", c.points);
-    expect_error(run(d, "eval " + m + " " + d / "p.csv -q"), 1, c.message);
+    write_file(d / "p.csv", c.points);
+    expect_error(run("eval " + m + " " + d / "p.csv -q"), 1, c.message);
   }
-  write(d / "p.csv", "x,y,z\n0,0,0\n");
-  write(d / "bad.rf", "box(-1,-1,-1,1,1,1);\nres = sphere(x, y, z);\n");
-  expect_error(run(d, "eval " + d / "bad.rf " + d / "p.csv -q"), 1,
+  write_file(d / "p.csv", "x,y,z\n0,0,0\n");
+  write_file(d / "bad.rf", "box(-1,-1,-1,1,1,1);\nres = sphere(x, y, z);\n");
+  expect_error(run("eval " + d / "bad.rf " + d / "p.csv -q"), 1,
                "bad.rf:2:7: sphere expects 4 argument(s), got 3");
-  expect_error(run(d, "eval " + d / "missing.rf " + d / "p.csv -q"), 1, "missing.rf: cannot open");
+  expect_error(run("eval " + d / "missing.rf " + d / "p.csv -q"), 1, "missing.rf: cannot open");
   // a failed run leaves no output file
-  expect_error(run(d, "eval " + d / "bad.rf " + d / "p.csv -o " + d / "out.csv -q"), 1,
-               "bad.rf:2:7");
+  expect_error(run("eval " + d / "bad.rf " + d / "p.csv -o " + d / "out.csv -q"), 1, "bad.rf:2:7");
   CHECK(!fs::exists(d / "out.csv"));
-  expect_error(run(d, "eval " + m + " " + d / "p.csv -o " + d / "no/dir/out.csv -q"), 1,
+  expect_error(run("eval " + m + " " + d / "p.csv -o " + d / "no/dir/out.csv -q"), 1,
                "does not exist");
 }

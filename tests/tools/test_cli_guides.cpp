@@ -1,41 +1,22 @@
 // interlin loft --guides: the Gordon surface through sections and guide lines from the CLI,
 // its report and outputs, and one FILE:LINE error for bad guide files.
+#include "support/cli_runner.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
+using namespace interlin::test;
+
 namespace {
-
-struct Run {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Run run(const interlin::test::TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(INTERLIN_CLI) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(cmd.c_str());
-  Run r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
 
 const std::string kSections = INTERLIN_DATA_DIR "/rotor37/sections.csv";
 const std::string kLoft = "loft " + kSections;
@@ -69,10 +50,10 @@ double number_after(const std::string& text, const std::string& key) {
 
 TEST_CASE("CLI --guides: Gordon surface through sections and edge lines, outputs and report",
           "[cli][guided]") {
-  interlin::test::TempDir d("cli-guides");
-  std::ofstream(d / "edges.csv") << edges_csv();
-  const Run r = run(d, kLoft + " --guides " + (d / "edges.csv") + " -q -o " + (d / "g.igs") +
-                           " -o " + (d / "g.json") + " -o " + (d / "g.csv"));
+  TempDir d("cli-guides");
+  write_file(d / "edges.csv", edges_csv());
+  const Run r = run(kLoft + " --guides " + (d / "edges.csv") + " -q -o " + (d / "g.igs") + " -o " +
+                    (d / "g.json") + " -o " + (d / "g.csv"));
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("guides       2 (LE at u = 0, TE at u = 0.503)"));
@@ -94,10 +75,10 @@ TEST_CASE("CLI --guides: Gordon surface through sections and edge lines, outputs
 
 TEST_CASE("CLI --guides with --holdout: the edge lines shrink the hold-out distance",
           "[cli][guided]") {
-  interlin::test::TempDir d("cli-guides");
-  std::ofstream(d / "edges.csv") << edges_csv();
-  const Run plain = run(d, kLoft + " --holdout 2 -q");
-  const Run guided = run(d, kLoft + " --holdout 2 -q --guides " + (d / "edges.csv"));
+  TempDir d("cli-guides");
+  write_file(d / "edges.csv", edges_csv());
+  const Run plain = run(kLoft + " --holdout 2 -q");
+  const Run guided = run(kLoft + " --holdout 2 -q --guides " + (d / "edges.csv"));
   REQUIRE(plain.status == 0);
   REQUIRE(guided.status == 0);
   const double p = number_after(plain.out, "withheld sections: max "),
@@ -107,23 +88,22 @@ TEST_CASE("CLI --guides with --holdout: the edge lines shrink the hold-out dista
 }
 
 TEST_CASE("CLI --guides: bad guide files and options", "[cli][guided]") {
-  interlin::test::TempDir d("cli-guides");
-  std::ofstream(d / "bad.csv") << "guide,x,y,z\nLE,1,2,3\nLE,1,2x,3\n";
-  Run r = run(d, kLoft + " --guides " + (d / "bad.csv") + " -o " + (d / "out.stl"));
+  TempDir d("cli-guides");
+  write_file(d / "bad.csv", "guide,x,y,z\nLE,1,2,3\nLE,1,2x,3\n");
+  Run r = run(kLoft + " --guides " + (d / "bad.csv") + " -o " + (d / "out.stl"));
   CHECK(r.status == 1);
   CHECK_THAT(r.err, Catch::Contains("bad.csv:3: column y: '2x' is not a number"));
   CHECK_FALSE(fs::exists(d / "out.stl"));
   // A guide far from the blade: names the guide file and line.
-  std::ofstream(d / "far.csv") << "guide,x,y,z\nX,0,0,0\nX,0,0,100\n";
-  r = run(d, kLoft + " -q --guides " + (d / "far.csv") + " -o " + (d / "out.stl"));
+  write_file(d / "far.csv", "guide,x,y,z\nX,0,0,0\nX,0,0,100\n");
+  r = run(kLoft + " -q --guides " + (d / "far.csv") + " -o " + (d / "out.stl"));
   CHECK(r.status == 1);
   CHECK_THAT(r.err, Catch::StartsWith("interlin: " + (d / "far.csv") + ":2: guide X passes"));
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK_FALSE(fs::exists(d / "out.stl"));
-  r = run(d, kLoft + " --guide-tolerance 1e-2 -o " + (d / "out.stl"));
+  r = run(kLoft + " --guide-tolerance 1e-2 -o " + (d / "out.stl"));
   CHECK(r.status == 2);
   CHECK_THAT(r.err, Catch::Contains("--guide-tolerance needs --guides"));
-  r = run(d,
-          kLoft + " --guides " + (d / "far.csv") + " --guide-tolerance abc -o " + (d / "out.stl"));
+  r = run(kLoft + " --guides " + (d / "far.csv") + " --guide-tolerance abc -o " + (d / "out.stl"));
   CHECK(r.status == 2);
 }

@@ -3,48 +3,21 @@
 #include "interlin/reconstruction/mesh_check.h"
 #include "interlin/reconstruction/mesh_io.h"
 
+#include "support/cli_runner.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
 namespace fs = std::filesystem;
 
+using namespace interlin::test;
+
 namespace {
-
-struct Run {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Run run(const interlin::test::TempDir& dir, const std::string& args) {
-  const std::string out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(INTERLIN_CLI) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(cmd.c_str());
-  Run r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
-
-long files_in(const interlin::test::TempDir& d) {
-  return long(std::distance(fs::directory_iterator(d.path()), fs::directory_iterator()));
-}
 
 // A ball of radius 1 (F = 1 - r^2) in a box with margin.
 const char* const kBall = "% unit ball\nbox(-1.2, -1.2, -1.2, 1.2, 1.2, 1.2);\n"
@@ -53,13 +26,13 @@ const char* const kBall = "% unit ball\nbox(-1.2, -1.2, -1.2, 1.2, 1.2, 1.2);\n"
 } // namespace
 
 TEST_CASE("CLI mesh: help and usage errors", "[cli][mesh]") {
-  interlin::test::TempDir d("climesh");
-  Run r = run(d, "--help");
+  TempDir d("climesh");
+  Run r = run("--help");
   CHECK_THAT(r.out, Catch::Contains("interlin mesh MODEL.rf"));
-  r = run(d, "mesh --help");
+  r = run("mesh --help");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("--resolution N") && Catch::Contains("--subboxes"));
-  std::ofstream(d / "ball.rf") << kBall;
+  write_file(d / "ball.rf", kBall);
   const std::string m = d / "ball.rf";
   for (const std::string& bad : std::vector<std::string>{
            "mesh " + m,                                           // no output
@@ -75,7 +48,7 @@ TEST_CASE("CLI mesh: help and usage errors", "[cli][mesh]") {
            "mesh " + m + " -o x.stl --resolution 8 --subboxes 9", // more than cells
            "mesh " + m + " -o x.stl --set r",                     // not NAME=VALUE
            "mesh " + m + " -o x.stl --bogus"}) {
-    r = run(d, bad + " -q");
+    r = run(bad + " -q");
     INFO(bad << " -> " << r.err);
     CHECK(r.status == 2);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
@@ -85,10 +58,10 @@ TEST_CASE("CLI mesh: help and usage errors", "[cli][mesh]") {
 }
 
 TEST_CASE("CLI mesh: a model becomes a closed mesh, a preview and a summary", "[cli][mesh]") {
-  interlin::test::TempDir d("climesh");
-  std::ofstream(d / "ball.rf") << kBall;
-  const Run r = run(d, "mesh " + (d / "ball.rf") + " -o " + (d / "b.stl") + " -o " + (d / "b.ply") +
-                           " -o " + (d / "b.png") + " --resolution 40");
+  TempDir d("climesh");
+  write_file(d / "ball.rf", kBall);
+  const Run r = run("mesh " + (d / "ball.rf") + " -o " + (d / "b.stl") + " -o " + (d / "b.ply") +
+                    " -o " + (d / "b.png") + " --resolution 40");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("41 x 41 x 41 nodes") && Catch::Contains("watertight") &&
@@ -104,8 +77,8 @@ TEST_CASE("CLI mesh: a model becomes a closed mesh, a preview and a summary", "[
   CHECK(slurp(d / "b.png").substr(1, 3) == "PNG");
   CHECK(fs::file_size(d / "b.stl") == 84 + 50 * std::uintmax_t(F.rows()));
   // Sub-boxes and threads change nothing but the vertex order: same counts, same volume.
-  const Run s = run(d, "mesh " + (d / "ball.rf") + " -o " + (d / "c.stl") +
-                           " --resolution 40 --subboxes 3,2,5 --threads 3 -q");
+  const Run s = run("mesh " + (d / "ball.rf") + " -o " + (d / "c.stl") +
+                    " --resolution 40 --subboxes 3,2,5 --threads 3 -q");
   REQUIRE(s.status == 0);
   CHECK(s.err.empty());
   auto line = [](const std::string& out, const std::string& key) {
@@ -117,42 +90,42 @@ TEST_CASE("CLI mesh: a model becomes a closed mesh, a preview and a summary", "[
 }
 
 TEST_CASE("CLI mesh: shipped model with smoothing and flips, a cutting box", "[cli][mesh]") {
-  interlin::test::TempDir d("climesh");
-  Run r = run(d, "mesh " INTERLIN_DATA_DIR "/models/valve.rf -o " + (d / "v.obj") +
-                     " --resolution 24 --smooth 1 --flip -q");
+  TempDir d("climesh");
+  Run r = run("mesh " INTERLIN_DATA_DIR "/models/valve.rf -o " + (d / "v.obj") +
+              " --resolution 24 --smooth 1 --flip -q");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("watertight"));
   // The box cuts the valve: warned, closed along the box.
-  std::ofstream(d / "ball.rf") << kBall;
-  r = run(d, "mesh " + (d / "ball.rf") + " -o " + (d / "h.off") +
-                 " --box -1.2,-1.2,0,1.2,1.2,1.2 --resolution 30");
+  write_file(d / "ball.rf", kBall);
+  r = run("mesh " + (d / "ball.rf") + " -o " + (d / "h.off") +
+          " --box -1.2,-1.2,0,1.2,1.2,1.2 --resolution 30");
   REQUIRE(r.status == 0);
   CHECK_THAT(r.err, Catch::Contains("warning: the body reaches the box"));
   CHECK_THAT(r.out, Catch::Contains("watertight"));
 }
 
 TEST_CASE("CLI mesh: bad input gives one error line, exit 1, no output", "[cli][mesh]") {
-  interlin::test::TempDir d("climesh");
+  TempDir d("climesh");
   // Missing model file.
-  Run r = run(d, "mesh " + (d / "none.rf") + " -o " + (d / "x.stl") + " -q");
+  Run r = run("mesh " + (d / "none.rf") + " -o " + (d / "x.stl") + " -q");
   CHECK(r.status == 1);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK_THAT(r.err, Catch::StartsWith("interlin: ") && Catch::Contains("none.rf"));
   // A syntax error: FILE:LINE:COLUMN from the model reader.
-  std::ofstream(d / "bad.rf") << "box(-1,-1,-1,1,1,1);\nres = 1 - x^2 +* y;\n";
-  r = run(d, "mesh " + (d / "bad.rf") + " -o " + (d / "x.stl") + " -q");
+  write_file(d / "bad.rf", "box(-1,-1,-1,1,1,1);\nres = 1 - x^2 +* y;\n");
+  r = run("mesh " + (d / "bad.rf") + " -o " + (d / "x.stl") + " -q");
   CHECK(r.status == 1);
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK_THAT(r.err, Catch::Contains("bad.rf:2:"));
   // No surface inside the box.
-  std::ofstream(d / "empty.rf") << "box(-1,-1,-1,1,1,1);\nres = -1 - x^2;\n";
-  r = run(d, "mesh " + (d / "empty.rf") + " -o " + (d / "x.stl") + " -q");
+  write_file(d / "empty.rf", "box(-1,-1,-1,1,1,1);\nres = -1 - x^2;\n");
+  r = run("mesh " + (d / "empty.rf") + " -o " + (d / "x.stl") + " -q");
   CHECK(r.status == 1);
   CHECK_THAT(r.err, Catch::Contains("empty.rf: no surface in the box"));
   // Output directory missing: checked before the work.
-  std::ofstream(d / "ball.rf") << kBall;
-  r = run(d, "mesh " + (d / "ball.rf") + " -o " + (d / "no/x.stl") + " -q");
+  write_file(d / "ball.rf", kBall);
+  r = run("mesh " + (d / "ball.rf") + " -o " + (d / "no/x.stl") + " -q");
   CHECK(r.status == 1);
   CHECK_THAT(r.err, Catch::Contains("does not exist"));
   CHECK(files_in(d) == 3); // bad.rf, empty.rf, ball.rf: no output, no temporary

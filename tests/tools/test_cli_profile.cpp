@@ -4,6 +4,7 @@
 #include "interlin/reconstruction/section_csv.h"
 #include "interlin/splines/cascade_stack.h"
 
+#include "support/cli_runner.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
@@ -11,44 +12,14 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 using namespace interlin;
+using namespace interlin::test;
 
 namespace {
-
-struct Run {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs the CLI with stdout/stderr captured outside the test directory (so that directory holds
-// only what the command wrote).
-Run run(const std::string& args) {
-  const test::TempDir io("profile-io");
-  const std::string out = io / "stdout.txt", err = io / "stderr.txt";
-  const int raw =
-      std::system((std::string(INTERLIN_CLI) + " " + args + " >" + out + " 2>" + err).c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-}
-
-size_t files_in(const test::TempDir& d) {
-  size_t n = 0;
-  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d.path()))
-    ++n;
-  return n;
-}
 
 const std::string kNozzle = INTERLIN_DATA_DIR "/profiles/turbine_nozzle.json";
 const std::string kSpan = INTERLIN_DATA_DIR "/profiles/turbine_blade_span.json";
@@ -87,7 +58,7 @@ std::string parameters_json(const std::string& replace_key = "", const std::stri
 
 TEST_CASE("interlin profile: one profile, bit-exact to the library, with curvature data",
           "[cli][profile]") {
-  const test::TempDir d("profile");
+  const TempDir d("profile");
   const Run h = run("profile --help");
   CHECK(h.status == 0);
   CHECK_THAT(h.out, Catch::Contains("Usage: interlin profile"));
@@ -133,7 +104,7 @@ TEST_CASE("interlin profile: one profile, bit-exact to the library, with curvatu
 }
 
 TEST_CASE("interlin profile: a span law stacks profiles that loft exactly", "[cli][profile]") {
-  const test::TempDir d("profile-span");
+  const TempDir d("profile-span");
   const Run r = run("profile " + kSpan + " -o " + (d / "blade.csv") + " -q");
   INFO(r.err);
   REQUIRE(r.status == 0);
@@ -168,9 +139,9 @@ TEST_CASE("interlin profile: a span law stacks profiles that loft exactly", "[cl
 
 TEST_CASE("interlin profile: bad input gives one error line, exit 1/2 and no output file",
           "[cli][profile]") {
-  const test::TempDir d("profile-bad");
+  const TempDir d("profile-bad");
   const auto write = [&](const std::string& name, const std::string& text) {
-    std::ofstream(d / name) << text;
+    write_file(d / name, text);
     return d / name;
   };
   struct Case {

@@ -1,0 +1,29 @@
+#pragma once
+// Fields of the section and guide readers: ASCII lower case for header names, and the strict
+// number and integer rules with their error messages (docs/formats.md, "Section files").
+
+#include <string>
+#include <string_view>
+
+namespace interlin {
+
+// `s` with A-Z lowered (header names are matched case-insensitively, independent of locale).
+std::string ascii_lower(std::string_view s);
+
+enum class NumberKind { ok, not_number, out_of_range, not_finite };
+
+// The whole field as one number (std::from_chars, general format), one leading '+' allowed.
+// `v` holds the value when the result is ok (or not_finite).
+NumberKind parse_strict_double(std::string_view field, double& v);
+
+// The whole field as one integer, one leading '+' allowed.
+bool parse_strict_long(std::string_view field, long& v);
+
+// parse_strict_double, or an InputError "PATH:LINE: column COLUMN: 'FIELD' is not a number"
+// (is out of the range of a double / is not a finite value ...).
+double field_number(std::string_view field, const std::string& path, long line, const char* column);
+
+// parse_strict_long, or an InputError "PATH:LINE: column index: 'FIELD' is not an integer".
+long field_index(std::string_view field, const std::string& path, long line);
+
+} // namespace interlin

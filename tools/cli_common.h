@@ -1,0 +1,59 @@
+#pragma once
+// What the interlin subcommands share: the run that maps errors to exit statuses and removes
+// the outputs of a failed run, progress lines, output checks, number formatting and the model
+// options of the commands that read an R-function model.
+
+#include "cli_args.h"
+
+#include "interlin/interflatation/model.h"
+
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace interlin::cli {
+
+// The body of a subcommand: its parsed arguments and the list of files it has written so far.
+using CommandBody = std::function<void(const ParsedArgs& args, std::vector<std::string>& written)>;
+
+// Runs one subcommand: parses argv[2..] with `options` plus -q/--quiet and -h/--help, prints
+// `help` on -h, else calls `body`; returns the exit status. A UsageError prints the one line
+// "interlin NAME: what" and gives 2; any other exception removes the files listed in `written`
+// (a command's outputs come as a set), prints "interlin: what" and gives 1; otherwise 0.
+int run_command(const char* name, const char* help, int argc, const char* const* argv,
+                std::vector<OptionSpec> options, const CommandBody& body);
+
+// Progress lines "[   12.3 ms] what" on stderr, timed from construction; none when quiet.
+struct Progress {
+  bool quiet;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  void operator()(const std::string& what) const;
+};
+
+// The single input file of a command; UsageError "missing the WHAT (see --help)" or
+// "expected one WHAT, got N".
+std::string single_input(const ParsedArgs& args, const std::string& what);
+
+// The extension of `path` in lower case (".stl"), empty when it has none.
+std::string lower_extension(const std::string& path);
+
+// Throws std::runtime_error "cannot write PATH: directory DIR does not exist" unless the
+// directory `path` is to be written in exists (checked before any work).
+void check_output_dir(const std::string& path);
+
+// "  wrote        A, B" on stdout; nothing when `paths` is empty.
+void print_written(const std::vector<std::string>& paths);
+
+// `x` with `precision` significant digits, as an ostream prints it.
+std::string fmt(double x, int precision = 4);
+
+// How a --set value that is not a number is named in its error: the whole NAME=VALUE (eval) or
+// the NAME alone (mesh).
+enum class SettingLabel { setting, name };
+
+// The model options of --var NAME and the repeatable --set NAME=VALUE. Throws UsageError for a
+// setting without '=' or name, a value that is not a finite number, and a name given twice.
+ModelOptions model_options(const ParsedArgs& args, SettingLabel label);
+
+} // namespace interlin::cli
