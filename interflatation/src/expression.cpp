@@ -75,31 +75,7 @@ double fold_value(Op op, double a, double b, double k) {
 #define INTERLIN_FOLD(o)                                                                           \
   case Op::o:                                                                                      \
     return checked_value<Op::o>(a, b, k);
-    INTERLIN_FOLD(add)
-    INTERLIN_FOLD(sub)
-    INTERLIN_FOLD(mul)
-    INTERLIN_FOLD(div)
-    INTERLIN_FOLD(neg)
-    INTERLIN_FOLD(pow_k)
-    INTERLIN_FOLD(pow)
-    INTERLIN_FOLD(sqrt)
-    INTERLIN_FOLD(abs)
-    INTERLIN_FOLD(sign)
-    INTERLIN_FOLD(sin)
-    INTERLIN_FOLD(cos)
-    INTERLIN_FOLD(tan)
-    INTERLIN_FOLD(asin)
-    INTERLIN_FOLD(acos)
-    INTERLIN_FOLD(atan)
-    INTERLIN_FOLD(atan2)
-    INTERLIN_FOLD(exp)
-    INTERLIN_FOLD(log)
-    INTERLIN_FOLD(min)
-    INTERLIN_FOLD(max)
-    INTERLIN_FOLD(hypot)
-    INTERLIN_FOLD(ratio)
-    INTERLIN_FOLD(and0)
-    INTERLIN_FOLD(or0)
+    INTERLIN_RF_VALUE_OPS(INTERLIN_FOLD)
 #undef INTERLIN_FOLD
   default:
     throw std::logic_error(std::string("fold_value: not a foldable operation: ") + op_name(op));

@@ -238,19 +238,29 @@ private:
            "expression nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
   }
 
+  // The node of the operator token `op` over its operand(s): unary with one, binary with two.
+  static Ast apply(const Token& op, Ast a) {
+    Ast n;
+    n.kind = Ast::Kind::unary;
+    n.pos = op.pos;
+    n.op = op.text[0];
+    n.args.push_back(std::move(a));
+    return n;
+  }
+  static Ast apply(const Token& op, Ast a, Ast b) {
+    Ast n = apply(op, std::move(a));
+    n.kind = Ast::Kind::binary;
+    n.args.push_back(std::move(b));
+    return n;
+  }
+
   // expr := term { (+|-) term }
   Ast expr(int depth) {
     check_depth(depth);
     Ast left = term(depth);
     while (is_symbol("+") || is_symbol("-")) {
       const Token& op = next();
-      Ast b;
-      b.kind = Ast::Kind::binary;
-      b.pos = op.pos;
-      b.op = op.text[0];
-      b.args.push_back(std::move(left));
-      b.args.push_back(term(depth));
-      left = std::move(b);
+      left = apply(op, std::move(left), term(depth));
     }
     return left;
   }
@@ -259,13 +269,7 @@ private:
     Ast left = unary(depth);
     while (is_symbol("*") || is_symbol("/")) {
       const Token& op = next();
-      Ast b;
-      b.kind = Ast::Kind::binary;
-      b.pos = op.pos;
-      b.op = op.text[0];
-      b.args.push_back(std::move(left));
-      b.args.push_back(unary(depth));
-      left = std::move(b);
+      left = apply(op, std::move(left), unary(depth));
     }
     return left;
   }
@@ -274,12 +278,7 @@ private:
     check_depth(depth);
     if (is_symbol("-") || is_symbol("+")) {
       const Token& op = next();
-      Ast u;
-      u.kind = Ast::Kind::unary;
-      u.pos = op.pos;
-      u.op = op.text[0];
-      u.args.push_back(unary(depth + 1));
-      return u;
+      return apply(op, unary(depth + 1));
     }
     return power(depth);
   }
@@ -289,25 +288,16 @@ private:
     if (!is_symbol("^"))
       return base;
     const Token& op = next();
-    Ast p;
-    p.kind = Ast::Kind::binary;
-    p.pos = op.pos;
-    p.op = '^';
-    p.args.push_back(std::move(base));
+    Ast exponent;
     if (is_symbol("-") || is_symbol("+")) { // 2^-1
       const Token& sign = next();
-      Ast u;
-      u.kind = Ast::Kind::unary;
-      u.pos = sign.pos;
-      u.op = sign.text[0];
-      u.args.push_back(primary(depth + 1));
-      p.args.push_back(std::move(u));
+      exponent = apply(sign, primary(depth + 1));
     } else {
-      p.args.push_back(primary(depth + 1));
+      exponent = primary(depth + 1);
     }
     if (is_symbol("^"))
       fail(peek(), "a^b^c is ambiguous: write (a^b)^c or a^(b^c)");
-    return p;
+    return apply(op, std::move(base), std::move(exponent));
   }
   Ast primary(int depth) {
     const Token& t = peek();
@@ -328,14 +318,7 @@ private:
       }
       next();
       a.kind = Ast::Kind::call;
-      if (!is_symbol(")"))
-        for (;;) {
-          a.args.push_back(expr(depth + 1));
-          if (is_symbol(")"))
-            break;
-          expect(",", "or ')' between the arguments of " + a.name + "(...)");
-        }
-      next();
+      a.args = list(")", "or ')' between the arguments of " + a.name + "(...)", depth);
       return a;
     }
     if (is_symbol("(")) {
@@ -348,17 +331,23 @@ private:
     if (is_symbol("[")) {
       next();
       a.kind = Ast::Kind::list;
-      if (!is_symbol("]"))
-        for (;;) {
-          a.args.push_back(expr(depth + 1));
-          if (is_symbol("]"))
-            break;
-          expect(",", "or ']' in the list");
-        }
-      next();
+      a.args = list("]", "or ']' in the list", depth);
       return a;
     }
     fail(t, "expected a number, a name, '(' or '[', found " + describe(t));
+  }
+  // [ expr { , expr } ] close: the items of a call or a list, after its opening symbol.
+  std::vector<Ast> list(const char* close, const std::string& between, int depth) {
+    std::vector<Ast> items;
+    if (!is_symbol(close))
+      for (;;) {
+        items.push_back(expr(depth + 1));
+        if (is_symbol(close))
+          break;
+        expect(",", between);
+      }
+    next();
+    return items;
   }
 
   std::vector<Token> t_;

@@ -31,6 +31,43 @@ inline bool is_finite(double v) {
 // singular sub-body does not poison a union. s = -1 conjunction, +1 disjunction.
 double r0_nonfinite(double a, double b, double s);
 
+// The operations with a value kernel, as X-macro lists for the switches that dispatch them:
+// INTERLIN_RF_VALUE_OPS(CASE) expands CASE(add) CASE(sub) ... CASE(or0), the operations an
+// expression holds; INTERLIN_RF_IMMEDIATE_OPS(CASE) the immediate forms of compiled programs.
+#define INTERLIN_RF_VALUE_OPS(CASE)                                                                \
+  CASE(add)                                                                                        \
+  CASE(sub)                                                                                        \
+  CASE(mul)                                                                                        \
+  CASE(div)                                                                                        \
+  CASE(neg)                                                                                        \
+  CASE(pow_k)                                                                                      \
+  CASE(pow)                                                                                        \
+  CASE(sqrt)                                                                                       \
+  CASE(abs)                                                                                        \
+  CASE(sign)                                                                                       \
+  CASE(sin)                                                                                        \
+  CASE(cos)                                                                                        \
+  CASE(tan)                                                                                        \
+  CASE(asin)                                                                                       \
+  CASE(acos)                                                                                       \
+  CASE(atan)                                                                                       \
+  CASE(atan2)                                                                                      \
+  CASE(exp)                                                                                        \
+  CASE(log)                                                                                        \
+  CASE(min)                                                                                        \
+  CASE(max)                                                                                        \
+  CASE(hypot)                                                                                      \
+  CASE(ratio)                                                                                      \
+  CASE(and0)                                                                                       \
+  CASE(or0)
+#define INTERLIN_RF_IMMEDIATE_OPS(CASE)                                                            \
+  CASE(add_k)                                                                                      \
+  CASE(mul_k)                                                                                      \
+  CASE(k_sub)                                                                                      \
+  CASE(k_div)                                                                                      \
+  CASE(div_k)                                                                                      \
+  CASE(square)
+
 struct Partials {
   double a = 0, b = 0;
 };

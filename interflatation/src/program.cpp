@@ -164,6 +164,12 @@ Program build_program(const NodePtr& root) {
   return p;
 }
 
+// The value handed out: NaN (undefined) is outside, infinities become the largest finite values.
+double finite_value(double v) {
+  constexpr double big = std::numeric_limits<double>::max();
+  return v != v ? -big : std::clamp(v, -big, big);
+}
+
 // ---- value kernel --------------------------------------------------------------------------
 
 // N > 0: a full block of N points (a constant trip count); N = 0: n points.
@@ -219,44 +225,14 @@ void evaluate_block(const Program& p, const double* const xyz[3], int n, double*
   case Op::o:                                                                                      \
     run_values<Op::o, N>(r, A, B, n, in.k);                                                        \
     break;
-      INTERLIN_CASE(add)
-      INTERLIN_CASE(sub)
-      INTERLIN_CASE(mul)
-      INTERLIN_CASE(div)
-      INTERLIN_CASE(neg)
-      INTERLIN_CASE(pow_k)
-      INTERLIN_CASE(pow)
-      INTERLIN_CASE(sqrt)
-      INTERLIN_CASE(abs)
-      INTERLIN_CASE(sign)
-      INTERLIN_CASE(sin)
-      INTERLIN_CASE(cos)
-      INTERLIN_CASE(tan)
-      INTERLIN_CASE(asin)
-      INTERLIN_CASE(acos)
-      INTERLIN_CASE(atan)
-      INTERLIN_CASE(atan2)
-      INTERLIN_CASE(exp)
-      INTERLIN_CASE(log)
-      INTERLIN_CASE(min)
-      INTERLIN_CASE(max)
-      INTERLIN_CASE(hypot)
-      INTERLIN_CASE(ratio)
-      INTERLIN_CASE(and0)
-      INTERLIN_CASE(or0)
-      INTERLIN_CASE(add_k)
-      INTERLIN_CASE(mul_k)
-      INTERLIN_CASE(k_sub)
-      INTERLIN_CASE(k_div)
-      INTERLIN_CASE(div_k)
-      INTERLIN_CASE(square)
+      INTERLIN_RF_VALUE_OPS(INTERLIN_CASE)
+      INTERLIN_RF_IMMEDIATE_OPS(INTERLIN_CASE)
 #undef INTERLIN_CASE
     }
   }
   const double* v = reg(p.out);
-  constexpr double big = std::numeric_limits<double>::max();
   for (int i = 0; i < n; ++i)
-    out[i] = v[i] != v[i] ? -big : std::clamp(v[i], -big, big);
+    out[i] = finite_value(v[i]);
 }
 
 // ---- dual-number kernel: each register holds the value and dF/dx, dF/dy, dF/dz ---------------
@@ -330,44 +306,14 @@ void gradient_block(const Program& p, const double* const xyz[3], int n, double*
   case Op::o:                                                                                      \
     run_duals<Op::o, N>(r, A, B, n, in.k);                                                         \
     break;
-      INTERLIN_CASE(add)
-      INTERLIN_CASE(sub)
-      INTERLIN_CASE(mul)
-      INTERLIN_CASE(div)
-      INTERLIN_CASE(neg)
-      INTERLIN_CASE(pow_k)
-      INTERLIN_CASE(pow)
-      INTERLIN_CASE(sqrt)
-      INTERLIN_CASE(abs)
-      INTERLIN_CASE(sign)
-      INTERLIN_CASE(sin)
-      INTERLIN_CASE(cos)
-      INTERLIN_CASE(tan)
-      INTERLIN_CASE(asin)
-      INTERLIN_CASE(acos)
-      INTERLIN_CASE(atan)
-      INTERLIN_CASE(atan2)
-      INTERLIN_CASE(exp)
-      INTERLIN_CASE(log)
-      INTERLIN_CASE(min)
-      INTERLIN_CASE(max)
-      INTERLIN_CASE(hypot)
-      INTERLIN_CASE(ratio)
-      INTERLIN_CASE(and0)
-      INTERLIN_CASE(or0)
-      INTERLIN_CASE(add_k)
-      INTERLIN_CASE(mul_k)
-      INTERLIN_CASE(k_sub)
-      INTERLIN_CASE(k_div)
-      INTERLIN_CASE(div_k)
-      INTERLIN_CASE(square)
+      INTERLIN_RF_VALUE_OPS(INTERLIN_CASE)
+      INTERLIN_RF_IMMEDIATE_OPS(INTERLIN_CASE)
 #undef INTERLIN_CASE
     }
   }
   const Dual o = reg(p.out);
-  constexpr double big = std::numeric_limits<double>::max();
   for (int i = 0; i < n; ++i) {
-    F[i] = o.v[i] != o.v[i] ? -big : std::clamp(o.v[i], -big, big);
+    F[i] = finite_value(o.v[i]);
     for (int c = 0; c < 3; ++c)
       G[c][i] = detail::is_finite(o.d[c][i]) ? o.d[c][i] : 0.0;
   }

@@ -59,17 +59,15 @@ Expr scale_xyz(const Expr& F, const Expr& sx, const Expr& sy, const Expr& sz) {
   return substitute(F, X / sx, Y / sy, Z / sz);
 }
 
+// A twist is the rotation by an angle that varies with the point.
 Expr twist_z(const Expr& F, const Expr& phi) {
-  const Expr c = cos(phi), s = sin(phi);
-  return substitute(F, X * c + Y * s, Y * c - X * s, Z);
+  return rotate_z(F, phi);
 }
 Expr twist_x(const Expr& F, const Expr& phi) {
-  const Expr c = cos(phi), s = sin(phi);
-  return substitute(F, X, Y * c + Z * s, Z * c - Y * s);
+  return rotate_x(F, phi);
 }
 Expr twist_y(const Expr& F, const Expr& phi) {
-  const Expr c = cos(phi), s = sin(phi);
-  return substitute(F, X * c - Z * s, Y, Z * c + X * s);
+  return rotate_y(F, phi);
 }
 
 Expr revolve_x(const Expr& F) {

@@ -1,5 +1,7 @@
 #include "interlin/reconstruction/edge_flips.h"
 
+#include "min_angle.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -16,16 +18,6 @@ namespace {
 
 std::uint64_t key(int a, int b) {
   return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b));
-}
-
-double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d p[3] = {a, b, c};
-  double m = M_PI;
-  for (int j = 0; j < 3; ++j) {
-    const Eigen::Vector3d e1 = p[(j + 1) % 3] - p[j], e2 = p[(j + 2) % 3] - p[j];
-    m = std::min(m, std::atan2(e1.cross(e2).norm(), e1.dot(e2)));
-  }
-  return m;
 }
 
 Eigen::Vector3d normal(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
@@ -92,8 +84,8 @@ long flip_edges(const Eigen::MatrixXd& V, Eigen::MatrixXi& F, const EdgeFlipOpti
       const Eigen::Vector3d n0 = normal(pa, pb, pc), n1 = normal(pb, pa, pd);
       if (!(n0.norm() > 0) || !(n1.norm() > 0) || n0.normalized().dot(n1.normalized()) < cos_limit)
         continue;
-      const double before = std::min(min_angle(pa, pb, pc), min_angle(pb, pa, pd));
-      const double after = std::min(min_angle(pd, pb, pc), min_angle(pc, pa, pd));
+      const double before = std::min(detail::min_angle(pa, pb, pc), detail::min_angle(pb, pa, pd));
+      const double after = std::min(detail::min_angle(pd, pb, pc), detail::min_angle(pc, pa, pd));
       if (!(after > before + 1e-9))
         continue;
       // Validity: c-d crosses a-b inside both, seen along the mean normal; no fold-over.

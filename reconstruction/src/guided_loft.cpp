@@ -536,30 +536,7 @@ GuidedLoftResult guided_loft(const std::vector<Section>& sections, const GuideSe
                               "interpolated (closer than 1e-3 of the section spacing)");
     knots.push_back(averaged_knots(fit.v, qb));
   }
-  {
-    struct Knot {
-      double value;
-      size_t curve;
-      Index index;
-    };
-    std::vector<Knot> all;
-    for (size_t c = 0; c < knots.size(); ++c)
-      for (Index i = qb + 1; i + qb + 1 < knots[c].size(); ++i)
-        all.push_back({knots[c](i), c, i});
-    std::sort(all.begin(), all.end(),
-              [](const Knot& a, const Knot& b) { return a.value < b.value; });
-    for (size_t i = 0; i < all.size();) {
-      size_t j = i + 1;
-      std::vector<size_t> seen = {all[i].curve};
-      while (j < all.size() && all[j].value - all[i].value < gap(all[i].value) &&
-             std::find(seen.begin(), seen.end(), all[j].curve) == seen.end()) {
-        seen.push_back(all[j].curve);
-        knots[all[j].curve](all[j].index) = all[i].value;
-        ++j;
-      }
-      i = j;
-    }
-  }
+  detail::snap_values(knots, qb + 1, gap);
   std::vector<BSplineCurve> curves;
   for (size_t l = 0; l < R.guides.size(); ++l)
     curves.push_back(interpolate_in_space(R.guides[l].points, R.guides[l].v, knots[l + 1], qb));
@@ -579,9 +556,7 @@ GuidedLoftResult guided_loft(const std::vector<Section>& sections, const GuideSe
   r.surface = gordon_bspline(sc.curves, v, gcurves, u, o.span_degree, true, 1e-10, knots[0]);
 
   // 8. Exactness: every section point, every guide point and the guide curves.
-  r.deviation = detail::section_deviation(r.surface, v, r.point_u, r.sections, lo, hi);
-  for (const VectorXd& d : r.deviation)
-    r.max_deviation = std::max(r.max_deviation, d.maxCoeff());
+  detail::section_deviation(r, lo, hi);
   r.bbox_diagonal = diag;
   const PiecewiseSurface S = to_piecewise(r.surface);
   for (size_t l = 0; l < R.guides.size(); ++l) {
@@ -609,10 +584,7 @@ GuidedLoftResult guided_loft(const std::vector<Section>& sections, const GuideSe
     R.max_input_deviation = std::max(R.max_input_deviation, fit.input_deviation.maxCoeff());
   }
   r.max_deviation = std::max(r.max_deviation, R.max_guide_deviation);
-  if (!(r.max_deviation <= 1e-9 * r.bbox_diagonal))
-    throw std::runtime_error("guided loft: surface deviates from the sections or guides by " +
-                             std::to_string(r.max_deviation) +
-                             " (more than 1e-9 x bounding-box diagonal); refusing to continue");
+  detail::require_exact(r, "guided loft: surface deviates from the sections or guides");
   return R;
 }
 

@@ -43,14 +43,9 @@ LoftResult loft_sections(const std::vector<Section>& sections, const LoftOptions
 
   // The interlineation property, checked at every input point.
   Eigen::Vector3d lo, hi;
-  r.deviation = detail::section_deviation(r.surface, r.section_v, r.point_u, r.sections, lo, hi);
-  for (const Eigen::VectorXd& d : r.deviation)
-    r.max_deviation = std::max(r.max_deviation, d.maxCoeff());
+  detail::section_deviation(r, lo, hi);
   r.bbox_diagonal = (hi - lo).norm();
-  if (!(r.max_deviation <= 1e-9 * r.bbox_diagonal))
-    throw std::runtime_error("loft: surface deviates from the input points by " +
-                             std::to_string(r.max_deviation) +
-                             " (more than 1e-9 x bounding-box diagonal); refusing to continue");
+  detail::require_exact(r, "loft: surface deviates from the input points");
   return r;
 }
 

@@ -17,6 +17,7 @@
 // order of the six entries, for which that holds (an exhaustive search over the 64 assignments);
 // build() re-checks it every time the table is generated.
 #include "mc_table.h"
+#include "min_angle.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -101,16 +102,6 @@ struct Geometry {
 // kFaceOwner[a][c]: the side s (face 2a + s of the owning cube) of an ambiguous face along axis a
 // whose corner at (0, 0) in the other two coordinates is inside (c = 1) or not (c = 0).
 constexpr int kFaceOwner[3][2] = {{0, 1}, {1, 0}, {0, 0}};
-
-double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d p[3] = {a, b, c};
-  double m = M_PI;
-  for (int j = 0; j < 3; ++j) {
-    const Eigen::Vector3d e1 = p[(j + 1) % 3] - p[j], e2 = p[(j + 2) % 3] - p[j];
-    m = std::min(m, std::atan2(e1.cross(e2).norm(), e1.dot(e2)));
-  }
-  return m;
-}
 
 // Max-min-angle triangulation of the loop (cube edges in order) cutting across no face f with
 // may_cut[f] false. Appends triangles (i, k, j) in loop order, i < k < j.

@@ -1,5 +1,7 @@
 #include "interlin/reconstruction/mesh_check.h"
 
+#include "min_angle.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -84,11 +86,7 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     }
     any_good = true;
     max_aspect = std::max(max_aspect, std::sqrt(3.0) * l2max / (2.0 * twice_area));
-    const Eigen::Vector3d p[3] = {a, b, c};
-    for (int j = 0; j < 3; ++j) {
-      const Eigen::Vector3d e1 = p[(j + 1) % 3] - p[j], e2 = p[(j + 2) % 3] - p[j];
-      min_angle = std::min(min_angle, std::atan2(e1.cross(e2).norm(), e1.dot(e2)));
-    }
+    min_angle = std::min(min_angle, detail::min_angle(a, b, c));
   }
   r.area = area;
   r.volume = volume / 6.0;

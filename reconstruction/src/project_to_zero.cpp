@@ -133,6 +133,53 @@ Points3 directions(const ImplicitFunction& f, const Points3& X, const Eigen::Vec
   return G;
 }
 
+// A search of the points' chunks in parallel: search(r0, m) handles rows [r0, r0 + m) and returns
+// how many it missed; the total missed. *moved, when given, is reset to all 0 first.
+template <class Search>
+long missed_over_chunks(long n, const RootOptions& o, std::vector<char>* moved, Search search) {
+  std::vector<long> missed(size_t((n + kChunk - 1) / kChunk), 0);
+  if (moved)
+    moved->assign(size_t(n), 0);
+  detail::parallel_for(long(missed.size()), detail::resolve_threads(o.threads), [&](long c, int) {
+    const long r0 = c * kChunk;
+    missed[size_t(c)] = search(r0, std::min(n, r0 + kChunk) - r0);
+  });
+  long total = 0;
+  for (long x : missed)
+    total += x;
+  return total;
+}
+
+// The end of a chunk's search. state per row of the chunk: 1 bracketed by the segment A -> B
+// (values FA, FB), 2 already on the surface, 3 missed. Each bracketed row r0 + r of P moves to
+// the root on its segment; (*moved)[r0 + r] is 1 for every row not missed. Returns the missed.
+long finish_chunk(const ImplicitFunction& f, const std::vector<int>& state, const Points3& A,
+                  const Points3& B, const Eigen::VectorXd& FA, const Eigen::VectorXd& FB,
+                  const RootOptions& o, long r0, Eigen::MatrixXd& P, std::vector<char>* moved) {
+  const long m = long(state.size());
+  std::vector<long> idx;
+  for (long r = 0; r < m; ++r)
+    if (state[size_t(r)] == 1)
+      idx.push_back(r);
+  const long k = long(idx.size());
+  Points3 SA(k, 3), SB(k, 3);
+  Eigen::VectorXd SFA(k), SFB(k), t(k);
+  for (long a = 0; a < k; ++a) {
+    SA.row(a) = A.row(idx[size_t(a)]);
+    SB.row(a) = B.row(idx[size_t(a)]);
+    SFA(a) = FA(idx[size_t(a)]);
+    SFB(a) = FB(idx[size_t(a)]);
+  }
+  if (k > 0)
+    roots_chunk(f, SA, SB, SFA, SFB, o, 0, k, t);
+  for (long a = 0; a < k; ++a)
+    P.row(r0 + idx[size_t(a)]) = SA.row(a) + t(a) * (SB.row(a) - SA.row(a));
+  if (moved)
+    for (long r = 0; r < m; ++r)
+      (*moved)[size_t(r0 + r)] = state[size_t(r)] != 3;
+  return std::count(state.begin(), state.end(), 3);
+}
+
 } // namespace
 
 Eigen::VectorXd roots_on_segments(const ImplicitFunction& f, const Points3& A, const Points3& B,
@@ -192,11 +239,7 @@ long project_along(const ImplicitFunction& f, Eigen::MatrixXd& P, const Eigen::M
     throw std::invalid_argument("project_along: step lengths must be > 0");
   constexpr int kScanSteps = 10000; // seed 003 code: at most 10000 steps of 0.01 h
   constexpr double kScanStep = 0.01;
-  std::vector<long> missed(size_t((n + kChunk - 1) / kChunk), 0);
-  if (moved)
-    moved->assign(size_t(n), 0);
-  detail::parallel_for(long(missed.size()), detail::resolve_threads(o.threads), [&](long c, int) {
-    const long r0 = c * kChunk, m = std::min(n, r0 + kChunk) - r0;
+  return missed_over_chunks(n, o, moved, [&](long r0, long m) {
     Points3 Q = P.middleRows(r0, m);
     Eigen::VectorXd F0(m);
     f.value(Q, F0);
@@ -251,32 +294,8 @@ long project_along(const ImplicitFunction& f, Eigen::MatrixXd& P, const Eigen::M
       }
       active.swap(idx);
     }
-    idx.clear();
-    for (long r = 0; r < m; ++r)
-      if (state[size_t(r)] == 1)
-        idx.push_back(r);
-    const long k = long(idx.size());
-    Points3 SA(k, 3), SB(k, 3);
-    Eigen::VectorXd SFA(k), SFB(k), t(k);
-    for (long a = 0; a < k; ++a) {
-      SA.row(a) = A.row(idx[size_t(a)]);
-      SB.row(a) = B.row(idx[size_t(a)]);
-      SFA(a) = FA(idx[size_t(a)]);
-      SFB(a) = FB(idx[size_t(a)]);
-    }
-    if (k > 0)
-      roots_chunk(f, SA, SB, SFA, SFB, o, 0, k, t);
-    for (long a = 0; a < k; ++a)
-      P.row(r0 + idx[size_t(a)]) = SA.row(a) + t(a) * (SB.row(a) - SA.row(a));
-    missed[size_t(c)] = std::count(state.begin(), state.end(), 3);
-    if (moved)
-      for (long r = 0; r < m; ++r)
-        (*moved)[size_t(r0 + r)] = state[size_t(r)] != 3;
+    return finish_chunk(f, state, A, B, FA, FB, o, r0, P, moved);
   });
-  long total = 0;
-  for (long x : missed)
-    total += x;
-  return total;
 }
 
 Eigen::MatrixXd outward_directions(const ImplicitFunction& f, const Eigen::MatrixXd& P, double h) {
@@ -297,11 +316,7 @@ long project_by_gradient_walk(const ImplicitFunction& f, Eigen::MatrixXd& P,
     throw std::invalid_argument("project_by_gradient_walk: P must be #P by 3 and h #P");
   if (!(h.array() > 0).all() || max_steps < 1)
     throw std::invalid_argument("project_by_gradient_walk: steps must be > 0, max_steps >= 1");
-  std::vector<long> missed(size_t((n + kChunk - 1) / kChunk), 0);
-  if (moved)
-    moved->assign(size_t(n), 0);
-  detail::parallel_for(long(missed.size()), detail::resolve_threads(o.threads), [&](long c, int) {
-    const long r0 = c * kChunk, m = std::min(n, r0 + kChunk) - r0;
+  return missed_over_chunks(n, o, moved, [&](long r0, long m) {
     Points3 cur = P.middleRows(r0, m);
     Eigen::VectorXd F0(m), fcur(m);
     f.value(cur, F0);
@@ -353,32 +368,8 @@ long project_by_gradient_walk(const ImplicitFunction& f, Eigen::MatrixXd& P,
     }
     for (long r : active)
       state[size_t(r)] = 3;
-    std::vector<long> idx;
-    for (long r = 0; r < m; ++r)
-      if (state[size_t(r)] == 1)
-        idx.push_back(r);
-    const long k = long(idx.size());
-    Points3 SA(k, 3), SB(k, 3);
-    Eigen::VectorXd SFA(k), SFB(k), t(k);
-    for (long a = 0; a < k; ++a) {
-      SA.row(a) = A.row(idx[size_t(a)]);
-      SB.row(a) = B.row(idx[size_t(a)]);
-      SFA(a) = FA(idx[size_t(a)]);
-      SFB(a) = FB(idx[size_t(a)]);
-    }
-    if (k > 0)
-      roots_chunk(f, SA, SB, SFA, SFB, o, 0, k, t);
-    for (long a = 0; a < k; ++a)
-      P.row(r0 + idx[size_t(a)]) = SA.row(a) + t(a) * (SB.row(a) - SA.row(a));
-    missed[size_t(c)] = std::count(state.begin(), state.end(), 3);
-    if (moved)
-      for (long r = 0; r < m; ++r)
-        (*moved)[size_t(r0 + r)] = state[size_t(r)] == 1 || state[size_t(r)] == 2;
+    return finish_chunk(f, state, A, B, FA, FB, o, r0, P, moved);
   });
-  long total = 0;
-  for (long x : missed)
-    total += x;
-  return total;
 }
 
 } // namespace interlin

@@ -52,35 +52,32 @@ VectorXd section_parameters(const MatrixXd& P, double exponent, const std::vecto
   return out;
 }
 
-// Parameters closer than `tol` in different sections are made equal (the first value wins), so
-// that the knot union does not create spans many orders of magnitude shorter than their
-// neighbours. Values of one section are never merged with each other.
-void snap_parameters(std::vector<VectorXd>& u, double tol) {
+} // namespace
+
+void snap_values(std::vector<VectorXd>& u, Index ends, const std::function<double(double)>& tol) {
   struct Entry {
     double value;
-    size_t section;
+    size_t vector;
     Index row;
   };
   std::vector<Entry> all;
   for (size_t k = 0; k < u.size(); ++k)
-    for (Index i = 1; i + 1 < u[k].size(); ++i)
+    for (Index i = ends; i + ends < u[k].size(); ++i)
       all.push_back({u[k](i), k, i});
   std::sort(all.begin(), all.end(),
             [](const Entry& a, const Entry& b) { return a.value < b.value; });
   for (size_t i = 0; i < all.size();) {
     size_t j = i + 1;
-    std::vector<size_t> seen = {all[i].section};
-    while (j < all.size() && all[j].value - all[i].value < tol &&
-           std::find(seen.begin(), seen.end(), all[j].section) == seen.end()) {
-      seen.push_back(all[j].section);
-      u[all[j].section](all[j].row) = all[i].value;
+    std::vector<size_t> seen = {all[i].vector};
+    while (j < all.size() && all[j].value - all[i].value < tol(all[i].value) &&
+           std::find(seen.begin(), seen.end(), all[j].vector) == seen.end()) {
+      seen.push_back(all[j].vector);
+      u[all[j].vector](all[j].row) = all[i].value;
       ++j;
     }
     i = j;
   }
 }
-
-} // namespace
 
 SectionCurves section_curves(const std::vector<PreparedSection>& sections,
                              const std::vector<std::vector<Index>>& landmarks,
@@ -125,7 +122,7 @@ SectionCurves section_curves(const std::vector<PreparedSection>& sections,
   } else {
     // 1e-5 of the unit parameter range: spans at least ~1e-3 of their typical neighbours, well
     // inside the range where the explicit basis is exact to round-off (docs/formulas.md).
-    snap_parameters(r.point_u, 1e-5);
+    snap_values(r.point_u, 1, [](double) { return 1e-5; });
   }
 
   // Closed section curves (seed 001 §2.2), clamped at u = 0 so that all share the domain [0, 1].
@@ -178,24 +175,22 @@ SectionCurves section_curves(const std::vector<PreparedSection>& sections,
   return r;
 }
 
-std::vector<VectorXd> section_deviation(const BSplineSurface& S, const VectorXd& section_v,
-                                        const std::vector<VectorXd>& point_u,
-                                        const std::vector<PreparedSection>& sections,
-                                        Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+void section_deviation(LoftResult& r, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {
+  const BSplineSurface& S = r.surface;
+  const VectorXd& section_v = r.section_v;
   // S(u_i, v_k) = sum_i N_i(u) R_i with the row curve R = sum_j M_j(v_k) ctrl(., j) at v_k.
   const SplineBasis basis_u = explicit_basis(S.knots_u, S.degree_u);
   const SplineBasis basis_v = explicit_basis(S.knots_v, S.degree_v);
   lo = Eigen::Vector3d::Constant(INFINITY);
   hi = -lo;
-  std::vector<VectorXd> out;
   for (Index k = 0; k < section_v.size(); ++k) {
     Index span;
     const MatrixXd M = basis_derivatives(basis_v, section_v(k), 0, &span);
     MatrixXd R = MatrixXd::Zero(S.num_u, 3);
     for (int j = 0; j <= S.degree_v; ++j)
       R += M(0, j) * S.ctrl.middleRows(S.num_u * (span - S.degree_v + j), S.num_u);
-    const MatrixXd& P = sections[static_cast<size_t>(k)].points;
-    const VectorXd& u = point_u[static_cast<size_t>(k)];
+    const MatrixXd& P = r.sections[static_cast<size_t>(k)].points;
+    const VectorXd& u = r.point_u[static_cast<size_t>(k)];
     VectorXd dev(P.rows());
     for (Index i = 0; i < P.rows(); ++i) {
       const MatrixXd N = basis_derivatives(basis_u, u(i), 0, &span);
@@ -206,9 +201,15 @@ std::vector<VectorXd> section_deviation(const BSplineSurface& S, const VectorXd&
       lo = lo.cwiseMin(P.row(i).transpose());
       hi = hi.cwiseMax(P.row(i).transpose());
     }
-    out.push_back(dev);
+    r.deviation.push_back(dev);
+    r.max_deviation = std::max(r.max_deviation, dev.maxCoeff());
   }
-  return out;
+}
+
+void require_exact(const LoftResult& r, const std::string& what) {
+  if (!(r.max_deviation <= 1e-9 * r.bbox_diagonal))
+    throw std::runtime_error(what + " by " + std::to_string(r.max_deviation) +
+                             " (more than 1e-9 x bounding-box diagonal); refusing to continue");
 }
 
 } // namespace interlin::detail

@@ -1,12 +1,14 @@
 #pragma once
 // Shared by loft_sections and guided_loft (private header): closed section curves on one knot
-// vector with landmark rows at common parameters, the span parameters, and the deviation of a
-// surface from the section points.
+// vector with landmark rows at common parameters, the span parameters, the deviation of a
+// surface from the section points and its guarantee, and the snapping of close parameters.
 
 #include "interlin/reconstruction/loft.h"
 #include "interlin/splines/bspline_curve.h"
 
 #include <Eigen/Core>
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace interlin::detail {
@@ -35,12 +37,21 @@ SectionCurves section_curves(const std::vector<PreparedSection>& sections,
                              const std::vector<std::vector<Eigen::Index>>& landmarks,
                              const LoftOptions& o);
 
-// |S(u_i, v_k) - P_i| for every prepared point (row curve at v_k, then the u basis of S).
-// lo/hi receive the points' bounding box.
-std::vector<Eigen::VectorXd> section_deviation(const BSplineSurface& S,
-                                               const Eigen::VectorXd& section_v,
-                                               const std::vector<Eigen::VectorXd>& point_u,
-                                               const std::vector<PreparedSection>& sections,
-                                               Eigen::Vector3d& lo, Eigen::Vector3d& hi);
+// The interlineation check at every input point: r.deviation[k](i) = |S(u_i, v_k) - P_i| for r's
+// surface, parameters and prepared sections (row curve at v_k, then the u basis of S), and
+// r.max_deviation the largest (r.deviation empty and r.max_deviation 0 before). lo/hi receive
+// the points' bounding box.
+void section_deviation(LoftResult& r, Eigen::Vector3d& lo, Eigen::Vector3d& hi);
+
+// The exactness guarantee: throws std::runtime_error "<what> by <max deviation> (more than 1e-9 x
+// bounding-box diagonal); refusing to continue" unless r.max_deviation <= 1e-9 r.bbox_diagonal.
+void require_exact(const LoftResult& r, const std::string& what);
+
+// Values closer than tol(first) in different vectors of u are made equal, the first (smallest)
+// value winning, so that a knot union does not create spans many orders of magnitude shorter
+// than their neighbours; values of one vector are never merged with each other. Only entries
+// [ends, size - ends) of each vector take part.
+void snap_values(std::vector<Eigen::VectorXd>& u, Eigen::Index ends,
+                 const std::function<double(double)>& tol);
 
 } // namespace interlin::detail

@@ -148,6 +148,14 @@ std::vector<Vector2d> piece_ends(const VectorXd&, const Pieces& ps, const Quadra
   return e;
 }
 
+// The points of a one-piece curve at arc length theta(2) (the interior target) and at its end.
+std::vector<Vector2d> interior_and_end(const VectorXd& t, const Pieces& ps,
+                                       const QuadratureOptions& q) {
+  const NaturalSamples smp =
+      sample_natural_curve(ps[0], (VectorXd(2) << t(2), ps[0].length).finished(), q);
+  return {smp.points.row(0).transpose(), smp.points.row(1).transpose()};
+}
+
 // Law of fit_hermite_curvature for unknowns (b, S).
 VectorXd hermite_law(const VectorXd& fixed, double dphi, double b, double S) {
   const Index m = fixed.size();
@@ -271,12 +279,7 @@ NaturalFit fit_quadratic_curvature_3pt(const CurvePose& p0, const Vector2d& p1, 
     const double a = 3 / (S * S) * (dphi / S - t(0) * S / 2 - t(1));
     return Pieces{piece(p0.point, p0.angle, (VectorXd(3) << t(1), t(0), a).finished(), S)};
   };
-  // Computed points P(S1) and P(S1 + S2).
-  pr.points = [](const VectorXd& t, const Pieces& ps, const QuadratureOptions& q) {
-    const NaturalSamples smp =
-        sample_natural_curve(ps[0], (VectorXd(2) << t(2), ps[0].length).finished(), q);
-    return std::vector<Vector2d>{smp.points.row(0).transpose(), smp.points.row(1).transpose()};
-  };
+  pr.points = interior_and_end; // P(S1) and P(S1 + S2)
   pr.targets = {p1, p2.point};
   pr.weights = {0.5, 0.5};
   pr.feasible = positive_lengths(2);
@@ -349,11 +352,7 @@ NaturalFit fit_cubic_curvature_3pt(const CurvePose& p0, const CurvePose& p1, con
     return Pieces{
         piece(p0.point, p0.angle, (VectorXd(4) << t(1), t(0), ab(1), ab(0)).finished(), t(3))};
   };
-  pr.points = [](const VectorXd& t, const Pieces& ps, const QuadratureOptions& q) {
-    const NaturalSamples smp =
-        sample_natural_curve(ps[0], (VectorXd(2) << t(2), t(3)).finished(), q);
-    return std::vector<Vector2d>{smp.points.row(0).transpose(), smp.points.row(1).transpose()};
-  };
+  pr.points = interior_and_end; // P(S1) and P(S2)
   pr.targets = {p1.point, p2.point};
   pr.weights = {0.8, 0.2}; // the book's lambda (§1.9): the interior point is harder to hit
   pr.feasible = [](const VectorXd& t) { return t(2) > 0 && t(3) > t(2); };

@@ -2,11 +2,11 @@
 // cells, the error identity with closed-form 1-D errors, fitted order.
 #include "interlin/interlineation/coons_hermite.h"
 
+#include "support/test_fields.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <functional>
 #include <random>
 
 using namespace interlin;
@@ -14,10 +14,11 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::RowVectorXd;
 using Eigen::VectorXd;
+using test::Field;
+using test::mono;
+using test::t13;
 
 namespace {
-
-using Field = std::function<RowVectorXd(double, double, int, int)>;
 
 HermiteTraces hermite_traces_of(const Field& F, const VectorXd& x, const VectorXd& y) {
   HermiteTraces t;
@@ -32,20 +33,6 @@ HermiteTraces hermite_traces_of(const Field& F, const VectorXd& x, const VectorX
     t.dy_on_y.push_back([F, b = y(j)](double s, int d) { return F(s, b, d, 1); });
   }
   return t;
-}
-
-double mono(double x, int a, int d) {
-  double c = 1;
-  for (int m = 0; m < d; ++m)
-    c *= a - m;
-  return d > a ? 0.0 : c * std::pow(x, a - d);
-}
-
-// sin(3x) cos(2y) + x^3 y^3 (digest T13 function), any derivative.
-RowVectorXd t13(double x, double y, int dx, int dy) {
-  return RowVectorXd::Constant(1, std::pow(3.0, dx) * std::sin(3 * x + dx * M_PI / 2) *
-                                          std::pow(2.0, dy) * std::cos(2 * y + dy * M_PI / 2) +
-                                      mono(x, 3, dx) * mono(y, 3, dy));
 }
 
 } // namespace
@@ -120,12 +107,8 @@ TEST_CASE("Composite Hermite Coons converges like O(h^8) on a smooth function", 
   for (int n : {2, 4, 8}) {
     const VectorXd lines = VectorXd::LinSpaced(n + 1, 0, 1);
     const HermiteCoons O = coons_hermite(hermite_traces_of(t13, lines, lines));
-    double e = 0;
-    for (double x : VectorXd::LinSpaced(61, 0, 1))
-      for (double y : VectorXd::LinSpaced(61, 0, 1))
-        e = std::max(e, std::abs(evaluate(O, x, y)(0) - t13(x, y, 0, 0)(0)));
     h.push_back(1.0 / n);
-    err.push_back(e);
+    err.push_back(test::max_error_on_unit_square(O, t13, 61));
   }
   INFO("errors " << err[0] << " " << err[1] << " " << err[2]);
   CHECK(test::fitted_order(h, err) == Approx(8.0).margin(0.4));

@@ -76,6 +76,30 @@ Network network(Index K, const VectorXd& u, int q) {
   return n;
 }
 
+// Traces of the Boolean-sum operator from the same curves: the guides on the lines x = u_l, the
+// sections on the lines y = v_k.
+LineTraces curve_traces(const VectorXd& u, const std::vector<BSplineCurve>& guides,
+                        const VectorXd& v, const std::vector<BSplineCurve>& sections) {
+  LineTraces t;
+  t.x = u;
+  t.y = v;
+  for (const BSplineCurve& g : guides)
+    t.on_x.push_back(spline_trace(g));
+  for (const BSplineCurve& c : sections)
+    t.on_y.push_back(spline_trace(c));
+  return t;
+}
+
+// The largest |P(a, b) - O(a, b)| over na x nb samples of [0, a_max] x [0, 1].
+double max_difference(const PiecewiseSurface& P, const GordonSurface& O, int na, double a_max,
+                      int nb) {
+  double worst = 0;
+  for (double a : VectorXd::LinSpaced(na, 0, a_max))
+    for (double b : VectorXd::LinSpaced(nb, 0, 1))
+      worst = std::max(worst, (evaluate(P, a, b).transpose() - evaluate(O, a, b)).norm());
+  return worst;
+}
+
 } // namespace
 
 TEST_CASE("Gordon B-spline surface interpolates both curve families exactly", "[gordon_bspline]") {
@@ -116,22 +140,12 @@ TEST_CASE("Gordon B-spline surface equals the Boolean-sum operator on the same c
   const VectorXd u = Eigen::Vector3d(0.0, 0.4, 0.7);
   const Network n = network(6, u, 3);
   const PiecewiseSurface P = to_piecewise(gordon_bspline(n.sections, n.v, n.guides, n.u, 3, true));
-  LineTraces t;
-  t.x = n.u;
-  t.y = n.v;
-  for (const BSplineCurve& g : n.guides)
-    t.on_x.push_back(spline_trace(g));
-  for (const BSplineCurve& c : n.sections)
-    t.on_y.push_back(spline_trace(c));
   GordonOptions o;
   o.periodic_x = true;
   o.period_x = 1.0;
   o.tolerance = 1e-12;
-  const GordonSurface O = gordon_surface(t, o);
-  double worst = 0;
-  for (double a : VectorXd::LinSpaced(37, 0, 0.999))
-    for (double b : VectorXd::LinSpaced(23, 0, 1))
-      worst = std::max(worst, (evaluate(P, a, b).transpose() - evaluate(O, a, b)).norm());
+  const GordonSurface O = gordon_surface(curve_traces(n.u, n.guides, n.v, n.sections), o);
+  const double worst = max_difference(P, O, 37, 0.999, 23);
   INFO("max difference " << worst);
   CHECK(worst < 1e-13);
 }
@@ -158,21 +172,11 @@ TEST_CASE("Open network: quadratic cardinal blending across, elevated to the sec
   const BSplineSurface S = gordon_bspline(sections, v, guides, u, 3, false);
   CHECK_FALSE(S.closed_u);
   const PiecewiseSurface P = to_piecewise(S);
-  LineTraces t;
-  t.x = u;
-  t.y = v;
-  for (const BSplineCurve& g : guides)
-    t.on_x.push_back(spline_trace(g));
-  for (const BSplineCurve& c : sections)
-    t.on_y.push_back(spline_trace(c));
   GordonOptions o;
   o.degree_x = 2; // min(p, L - 1)
   o.tolerance = 1e-12;
-  const GordonSurface O = gordon_surface(t, o);
-  double worst = 0;
-  for (double a : VectorXd::LinSpaced(31, 0, 1))
-    for (double b : VectorXd::LinSpaced(17, 0, 1))
-      worst = std::max(worst, (evaluate(P, a, b).transpose() - evaluate(O, a, b)).norm());
+  const GordonSurface O = gordon_surface(curve_traces(u, guides, v, sections), o);
+  const double worst = max_difference(P, O, 31, 1, 17);
   INFO("max difference " << worst);
   CHECK(worst < 1e-13);
   CHECK_THROWS_WITH(gordon_bspline(sections, v, {guides[0], guides[1]}, u.head(2), 3, false),

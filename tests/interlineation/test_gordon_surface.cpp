@@ -4,11 +4,11 @@
 #include "interlin/interlineation/shape_diagnostics.h"
 #include "interlin/splines/interpolate_curve.h"
 
+#include "support/test_fields.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <functional>
 #include <random>
 
 using namespace interlin;
@@ -16,11 +16,10 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::RowVectorXd;
 using Eigen::VectorXd;
+using test::Field;
+using test::mono;
 
 namespace {
-
-// f and its partial derivatives as one callable: F(x, y, dx, dy) -> row of dim values.
-using Field = std::function<RowVectorXd(double, double, int, int)>;
 
 LineTraces traces_of(const Field& F, const VectorXd& x, const VectorXd& y) {
   LineTraces t;
@@ -44,14 +43,6 @@ RowVectorXd t11(double x, double y, int dx, int dy) {
   const double y2 = dy == 0 ? y * y : dy == 1 ? 2 * y : 2;
   const double xv = dx == 0 ? x : dx == 1 ? 1 : 0;
   return scalar(ex * s + xv * y2);
-}
-
-// Monomial x^a and its derivatives.
-double mono(double x, int a, int d) {
-  double c = 1;
-  for (int m = 0; m < d; ++m)
-    c *= a - m;
-  return d > a ? 0.0 : c * std::pow(x, a - d);
 }
 
 } // namespace
@@ -130,10 +121,7 @@ TEST_CASE("T13: composite Coons error table and its fitted O(h^4) order", "[gord
   for (int n : {1, 2, 4, 8, 16}) {
     const VectorXd lines = VectorXd::LinSpaced(n + 1, 0, 1);
     const GordonSurface O = coons_composite(traces_of(f, lines, lines));
-    double e = 0;
-    for (double x : VectorXd::LinSpaced(101, 0, 1))
-      for (double y : VectorXd::LinSpaced(101, 0, 1))
-        e = std::max(e, std::abs(evaluate(O, x, y)(0) - f(x, y, 0, 0)(0)));
+    const double e = test::max_error_on_unit_square(O, f, 101);
     // The digest prints 5 significant digits: agreement to half a unit of the last one.
     CHECK(e == Approx(table[row]).epsilon(1.5e-4));
     h.push_back(1.0 / n);
@@ -154,21 +142,12 @@ TEST_CASE("T13: composite Coons error table and its fitted O(h^4) order", "[gord
 
 TEST_CASE("Cubic Gordon converges like O(h^8) = O(h_x^4 h_y^4) on the T13 function", "[gordon]") {
   // f - O f = (I - P_x)(I - P_y) f with cubic spline interpolation errors O(h^4) in each factor.
-  const Field f = [](double x, double y, int dx, int dy) {
-    return scalar(std::pow(3.0, dx) * std::sin(3 * x + dx * M_PI / 2) * std::pow(2.0, dy) *
-                      std::cos(2 * y + dy * M_PI / 2) +
-                  mono(x, 3, dx) * mono(y, 3, dy));
-  };
   std::vector<double> h, err;
   for (int n : {4, 8, 16}) {
     const VectorXd lines = VectorXd::LinSpaced(n + 1, 0, 1);
-    const GordonSurface O = gordon_surface(traces_of(f, lines, lines));
-    double e = 0;
-    for (double x : VectorXd::LinSpaced(101, 0, 1))
-      for (double y : VectorXd::LinSpaced(101, 0, 1))
-        e = std::max(e, std::abs(evaluate(O, x, y)(0) - f(x, y, 0, 0)(0)));
+    const GordonSurface O = gordon_surface(traces_of(test::t13, lines, lines));
     h.push_back(1.0 / n);
-    err.push_back(e);
+    err.push_back(test::max_error_on_unit_square(O, test::t13, 101));
   }
   INFO("errors " << err[0] << " " << err[1] << " " << err[2]);
   // Measured 8.5 (studies/gordon_convergence: 9.96e-6, 2.99e-8, 7.76e-11 on a 201^2 sample).

@@ -2,6 +2,7 @@
 #include "interlin/reconstruction/cylindrical_loft.h"
 #include "interlin/reconstruction/input_error.h"
 
+#include "support/test_sections.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
@@ -20,22 +21,16 @@ double R(double t, double z) {
   return (1 + 0.35 * std::cos(2 * t) + 0.05 * std::sin(t)) * (1 + 0.2 * std::sin(2 * z));
 }
 
-Section star_section(double z, Index n, double phase) {
-  Section s;
-  s.id = std::to_string(z);
-  s.points.resize(n, 3);
-  for (Index i = 0; i < n; ++i) {
-    const double t = 2 * M_PI * (double(i) / n + 0.02 * std::sin(2 * M_PI * double(i) / n)) + phase;
-    s.points.row(i) << kCenter(0) + R(t, z) * std::cos(t), kCenter(1) + R(t, z) * std::sin(t), z;
-    s.lines.push_back(i + 2);
-  }
-  return s;
+// Its point at polar angle t (about kCenter) and height z.
+Eigen::Vector3d star_point(double t, double z) {
+  return {kCenter(0) + R(t, z) * std::cos(t), kCenter(1) + R(t, z) * std::sin(t), z};
 }
 
 std::vector<Section> star(Index K, Index n) {
   std::vector<Section> in;
   for (Index k = 0; k < K; ++k)
-    in.push_back(star_section(double(k) / double(K - 1), n + 7 * (k % 3), 0.1 * k));
+    in.push_back(
+        test::angle_section(double(k) / double(K - 1), n + 7 * (k % 3), 0.1 * k, 0.02, star_point));
   return in;
 }
 
@@ -50,8 +45,7 @@ Guide meridian(const std::string& id, double t, Index K, Index extra) {
   zs.push_back(1.0);
   g.points.resize(static_cast<Index>(zs.size()), 3);
   for (size_t j = 0; j < zs.size(); ++j) {
-    g.points.row(static_cast<Index>(j)) << kCenter(0) + R(t, zs[j]) * std::cos(t),
-        kCenter(1) + R(t, zs[j]) * std::sin(t), zs[j];
+    g.points.row(static_cast<Index>(j)) = star_point(t, zs[j]).transpose();
     g.lines.push_back(static_cast<long>(j) + 2);
   }
   return g;

@@ -7,6 +7,7 @@
 #include "interlin/reconstruction/input_error.h"
 #include "interlin/reconstruction/section_csv.h"
 
+#include "support/test_sections.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
@@ -16,50 +17,12 @@ using namespace interlin;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
+using test::body;
+using test::body_section;
+using test::rotor37;
+using test::rotor37_edges;
 
 namespace {
-
-const std::vector<Section>& rotor37() {
-  static const SectionSet set = read_sections(INTERLIN_DATA_DIR "/rotor37/sections.csv");
-  return set.sections;
-}
-
-// The leading- and trailing-edge lines of the NASA table: point 0 (J = 1) and point 99
-// (J = 100) of every section.
-GuideSet rotor37_edges(const std::vector<Section>& s) {
-  GuideSet g;
-  g.path = "edges.csv";
-  for (auto [id, row] : {std::pair{"LE", 0}, {"TE", 99}}) {
-    Guide e;
-    e.id = id;
-    e.points.resize(static_cast<Index>(s.size()), 3);
-    for (size_t k = 0; k < s.size(); ++k) {
-      e.points.row(static_cast<Index>(k)) = s[k].points.row(row);
-      e.lines.push_back(static_cast<long>(k) + 2);
-    }
-    g.guides.push_back(e);
-  }
-  return g;
-}
-
-// Smooth twisted, tapering body (as in test_loft.cpp): section z is an ellipse turned by 0.4 z.
-Eigen::Vector3d body(double t, double z) {
-  const double a = 2.0 + 0.3 * std::sin(z), b = 0.6 + 0.1 * z * z, w = 0.4 * z;
-  const double x = a * std::cos(t), y = b * std::sin(t);
-  return {std::cos(w) * x - std::sin(w) * y, std::sin(w) * x + std::cos(w) * y, z};
-}
-
-Section body_section(double z, Index n, double phase) {
-  Section s;
-  s.id = std::to_string(z);
-  s.points.resize(n, 3);
-  for (Index i = 0; i < n; ++i) {
-    const double t = 2 * M_PI * (double(i) / n + 0.03 * std::sin(2 * M_PI * double(i) / n)) + phase;
-    s.points.row(i) = body(t, z).transpose();
-    s.lines.push_back(i + 2);
-  }
-  return s;
-}
 
 // A guide on the body at angle t, sampled at m heights spread over [z0, z1] (not at the
 // sections' heights, so every crossing lies between two guide points).

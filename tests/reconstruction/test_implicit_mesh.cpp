@@ -70,20 +70,14 @@ TEST_CASE("implicit_mesh: vertices on F = 0; sphere and torus volumes converge w
   for (const Body& b : bodies) {
     std::vector<double> h, ev, ea;
     for (int n : {12, 24, 48, 96}) {
-      ImplicitMeshOptions o;
-      o.resolution = n;
-      Eigen::MatrixXd V;
-      Eigen::MatrixXi F;
-      ImplicitMeshInfo info;
-      implicit_mesh(b.f, o, V, F, &info);
-      const MeshReport m = check_mesh(V, F);
-      REQUIRE(m.watertight());
+      const test::CheckedMesh m = test::checked_mesh(b.f, test::at_resolution(n));
+      REQUIRE(m.report.watertight());
       // Projection: the bracket is cut to 1e-10 of the cell and |grad F| <= 2.4 here.
-      CHECK(max_abs_value(b.f, V) < 1e-9 * info.grid.spacing(0));
-      CHECK(info.projection_evaluations > 0);
-      h.push_back(info.grid.spacing(0));
-      ev.push_back(std::abs(m.volume - b.volume));
-      ea.push_back(std::abs(m.area - b.area));
+      CHECK(max_abs_value(b.f, m.V) < 1e-9 * m.info.grid.spacing(0));
+      CHECK(m.info.projection_evaluations > 0);
+      h.push_back(m.info.grid.spacing(0));
+      ev.push_back(std::abs(m.report.volume - b.volume));
+      ea.push_back(std::abs(m.report.area - b.area));
     }
     // Vertices on the surface: what is left is the chordal error of flat triangles, O(h^2).
     // Tolerance 0.3: grid-alignment wobble of the error constant.
@@ -104,17 +98,11 @@ TEST_CASE("implicit_mesh: seed 003 body (11): genus 5, volume converges to its c
   const ImplicitFunction f = test::body11_function();
   std::vector<double> h, err;
   for (int n : {20, 40, 80, 160}) {
-    ImplicitMeshOptions o;
-    o.resolution = n;
-    Eigen::MatrixXd V;
-    Eigen::MatrixXi F;
-    ImplicitMeshInfo info;
-    implicit_mesh(f, o, V, F, &info);
-    const MeshReport m = check_mesh(V, F);
-    REQUIRE(m.watertight());
-    CHECK(m.genus == 5);
-    h.push_back(info.grid.spacing(0));
-    err.push_back(std::abs(m.volume - exact));
+    const test::CheckedMesh m = test::checked_mesh(f, test::at_resolution(n));
+    REQUIRE(m.report.watertight());
+    CHECK(m.report.genus == 5);
+    h.push_back(m.info.grid.spacing(0));
+    err.push_back(std::abs(m.report.volume - exact));
   }
   // Creases and corners are cut off by O(h) chamfers along O(1) length: O(h^2) volume error.
   CHECK(test::fitted_order(h, err) == Approx(2).margin(0.4));
@@ -125,20 +113,15 @@ TEST_CASE("implicit_mesh: a box that cuts the body closes the mesh along the box
   const ImplicitFunction f = test::sphere(1.0);
   std::vector<double> h, err;
   for (int n : {16, 32, 64}) {
-    ImplicitMeshOptions o;
-    o.resolution = n;
+    ImplicitMeshOptions o = test::at_resolution(n);
     o.box = Eigen::AlignedBox3d(Eigen::Vector3d(-1.1, -1.1, 0), Eigen::Vector3d(1.1, 1.1, 1.1));
-    Eigen::MatrixXd V;
-    Eigen::MatrixXi F;
-    ImplicitMeshInfo info;
-    implicit_mesh(f, o, V, F, &info);
-    const MeshReport m = check_mesh(V, F);
-    REQUIRE(m.watertight());
-    CHECK(info.clipped > 0);
+    const test::CheckedMesh m = test::checked_mesh(f, o);
+    REQUIRE(m.report.watertight());
+    CHECK(m.info.clipped > 0);
     // No vertex below the cut (the cap sits on z = 0 up to the edge clamp of 1e-6 cells).
-    CHECK(V.col(2).minCoeff() > -1e-12);
-    h.push_back(info.grid.spacing(0));
-    err.push_back(std::abs(m.volume - 2 * M_PI / 3));
+    CHECK(m.V.col(2).minCoeff() > -1e-12);
+    h.push_back(m.info.grid.spacing(0));
+    err.push_back(std::abs(m.report.volume - 2 * M_PI / 3));
   }
   CHECK(test::fitted_order(h, err) == Approx(2).margin(0.4));
 }
@@ -155,17 +138,11 @@ TEST_CASE("implicit_mesh: NaN and infinite values are outside (+inf inside), sti
         return 1 - x * x - y * y - z * z;
       },
       test::cube_box(1.2));
-  ImplicitMeshOptions o;
-  o.resolution = 40;
-  Eigen::MatrixXd V;
-  Eigen::MatrixXi F;
-  ImplicitMeshInfo info;
-  implicit_mesh(f, o, V, F, &info);
-  const MeshReport m = check_mesh(V, F);
-  CHECK(m.watertight());
-  CHECK(m.components == 2); // the NaN slab splits the ball
-  CHECK(info.nonfinite > 0);
-  CHECK(V.allFinite());
+  const test::CheckedMesh m = test::checked_mesh(f, test::at_resolution(40));
+  CHECK(m.report.watertight());
+  CHECK(m.report.components == 2); // the NaN slab splits the ball
+  CHECK(m.info.nonfinite > 0);
+  CHECK(m.V.allFinite());
 }
 
 TEST_CASE("implicit_mesh: grid, box and option handling", "[implicit]") {

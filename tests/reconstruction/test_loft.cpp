@@ -4,6 +4,7 @@
 #include "interlin/reconstruction/loft.h"
 #include "interlin/reconstruction/section_csv.h"
 
+#include "support/test_sections.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
@@ -13,35 +14,8 @@ using namespace interlin;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-
-namespace {
-
-const std::vector<Section>& rotor37() {
-  static const SectionSet set = read_sections(INTERLIN_DATA_DIR "/rotor37/sections.csv");
-  return set.sections;
-}
-
-// A smooth twisted, tapering elliptic body: section z has semi-axes a(z), b(z) and is turned by
-// twist(z); points at angles t_i (nonuniform, count n). Exactly known surface for error studies.
-Eigen::Vector3d body(double t, double z) {
-  const double a = 2.0 + 0.3 * std::sin(z), b = 0.6 + 0.1 * z * z, w = 0.4 * z;
-  const double x = a * std::cos(t), y = b * std::sin(t);
-  return {std::cos(w) * x - std::sin(w) * y, std::sin(w) * x + std::cos(w) * y, z};
-}
-
-Section body_section(double z, Index n, double phase = 0) {
-  Section s;
-  s.id = std::to_string(z);
-  s.points.resize(n, 3);
-  for (Index i = 0; i < n; ++i) {
-    const double t = 2 * M_PI * (double(i) / n + 0.03 * std::sin(2 * M_PI * double(i) / n)) + phase;
-    s.points.row(i) = body(t, z).transpose();
-    s.lines.push_back(i + 2);
-  }
-  return s;
-}
-
-} // namespace
+using test::body_section;
+using test::rotor37;
 
 TEST_CASE("Rotor 37: the surface reproduces all 2574 input points to round-off", "[loft]") {
   for (StartAlign align : {StartAlign::first, StartAlign::leading_edge, StartAlign::trailing_edge})

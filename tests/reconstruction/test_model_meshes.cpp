@@ -7,6 +7,7 @@
 #include "interlin/reconstruction/implicit_mesh.h"
 #include "interlin/reconstruction/mesh_check.h"
 
+#include "support/test_implicits.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
@@ -30,16 +31,10 @@ struct Level {
 std::vector<Level> volumes(const ImplicitFunction& f, const std::vector<int>& resolutions) {
   std::vector<Level> out;
   for (int n : resolutions) {
-    ImplicitMeshOptions o;
-    o.resolution = n;
-    Eigen::MatrixXd V;
-    Eigen::MatrixXi F;
-    ImplicitMeshInfo info;
-    implicit_mesh(f, o, V, F, &info);
-    const MeshReport r = check_mesh(V, F);
+    const test::CheckedMesh m = test::checked_mesh(f, test::at_resolution(n));
     INFO("resolution " << n);
-    REQUIRE(r.watertight());
-    out.push_back({info.grid.spacing(0), r.volume});
+    REQUIRE(m.report.watertight());
+    out.push_back({m.info.grid.spacing(0), m.report.volume});
   }
   return out;
 }
@@ -66,12 +61,8 @@ TEST_CASE("Shipped models mesh into closed surfaces of the expected topology", "
   const Case cases[] = {
       {"valve.rf", 96, 0}, {"naca0011_plate.rf", 120, 3}, {"uav.rf", 184, 0}, {"car.rf", 80, -1}};
   for (const Case& c : cases) {
-    ImplicitMeshOptions o;
-    o.resolution = c.resolution;
-    Eigen::MatrixXd V;
-    Eigen::MatrixXi F;
-    implicit_mesh(load_model(model(c.file)), o, V, F);
-    const MeshReport r = check_mesh(V, F);
+    const MeshReport r =
+        test::checked_mesh(load_model(model(c.file)), test::at_resolution(c.resolution)).report;
     INFO(c.file);
     CHECK(r.watertight());
     CHECK(r.volume > 0);

@@ -6,6 +6,7 @@
 #include "interlin/reconstruction/iges.h"
 #include "interlin/reconstruction/section_csv.h"
 
+#include "support/test_sections.h"
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
@@ -31,21 +32,10 @@ using namespace interlin;
 
 TEST_CASE("Rotor 37 guided hold-out: OpenCASCADE on our IGES gives interlin's distances",
           "[occt][guided]") {
-  const SectionSet set = read_sections(INTERLIN_DATA_DIR "/rotor37/sections.csv");
-  GuideSet edges;
-  edges.path = "edges";
-  for (auto [id, row] : {std::pair{"LE", 0}, {"TE", 99}}) {
-    Guide g;
-    g.id = id;
-    g.points.resize(static_cast<Eigen::Index>(set.sections.size()), 3);
-    for (size_t k = 0; k < set.sections.size(); ++k) {
-      g.points.row(static_cast<Eigen::Index>(k)) = set.sections[k].points.row(row);
-      g.lines.push_back(static_cast<long>(k) + 2);
-    }
-    edges.guides.push_back(g);
-  }
+  const std::vector<Section>& sections = test::rotor37();
+  const GuideSet edges = test::rotor37_edges(sections);
   const HoldoutResult h = holdout_study(
-      set.sections, withheld_every(set.sections.size(), 2),
+      sections, withheld_every(sections.size(), 2),
       [&](const std::vector<Section>& keep) { return guided_loft(keep, edges).loft; });
   test::TempDir tmp("occt-guided");
   const std::string path = tmp.file("rotor37_guided.igs");
@@ -69,7 +59,7 @@ TEST_CASE("Rotor 37 guided hold-out: OpenCASCADE on our IGES gives interlin's di
   double worst = 0, occt_max = 0, sum2 = 0;
   long count = 0;
   for (size_t t = 0; t < h.test.size(); ++t) {
-    const Eigen::MatrixXd& P = set.sections[h.test[t]].points;
+    const Eigen::MatrixXd& P = sections[h.test[t]].points;
     for (Eigen::Index i = 0; i < P.rows(); ++i) {
       GeomAPI_ProjectPointOnSurf proj(gp_Pnt(P(i, 0), P(i, 1), P(i, 2)), S);
       REQUIRE(proj.NbPoints() > 0);

@@ -1,9 +1,12 @@
 #pragma once
 // Implicit test bodies in closed form (F > 0 inside), written inline with R-functions, for the
 // implicit -> mesh tests: sphere and torus (known volume and area), an R0 cube (sharp edges), and
-// seed 003's test body (11). Also the mesh comparison "equal up to vertex order".
+// seed 003's test body (11). Also meshing with the check report, and the mesh comparison "equal
+// up to vertex order".
 
 #include "interlin/interflatation/implicit_function.h"
+#include "interlin/reconstruction/implicit_mesh.h"
+#include "interlin/reconstruction/mesh_check.h"
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -87,6 +90,28 @@ inline double body11(double x, double y, double z, double R = 1.3) {
 
 inline ImplicitFunction body11_function(double R = 1.3) {
   return implicit([R](double x, double y, double z) { return body11(x, y, z, R); }, cube_box(1.0));
+}
+
+// implicit_mesh of f with options o, its info, and check_mesh of the result.
+struct CheckedMesh {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  ImplicitMeshInfo info;
+  MeshReport report;
+};
+
+inline CheckedMesh checked_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o) {
+  CheckedMesh m;
+  implicit_mesh(f, o, m.V, m.F, &m.info);
+  m.report = check_mesh(m.V, m.F);
+  return m;
+}
+
+// The default options with `resolution` cells along the box's longest side.
+inline ImplicitMeshOptions at_resolution(int resolution) {
+  ImplicitMeshOptions o;
+  o.resolution = resolution;
+  return o;
 }
 
 // Triangle meshes equal up to a renumbering of the vertices (positions compared exactly) and
