@@ -4,6 +4,7 @@ find_package(OpenMesh REQUIRED)                      # OpenMeshCore, OpenMeshToo
 find_package(flann REQUIRED CONFIG)                  # flann::flann_cpp (the C++ headers also need lz4)
 find_package(PNG REQUIRED)                           # PNG::PNG, for the shaded preview
 find_package(nlohmann_json 3 REQUIRED)               # nlohmann_json::nlohmann_json, surface JSON
+find_package(tomlplusplus 3 REQUIRED CONFIG)         # tomlplusplus::tomlplusplus (shared lib), profile TOML
 find_package(Threads REQUIRED)
 # OpenCASCADE (optional) is a baseline and an independent IGES reader for checks, never a
 # dependency of the library.

@@ -2,6 +2,7 @@
 // section CSV, one profile or a span stack that `interlin loft` accepts.
 #include "cli_common.h"
 #include "commands.h"
+#include "toml_as_json.h"
 
 #include "interlin/reconstruction/atomic_file.h"
 #include "interlin/reconstruction/input_error.h"
@@ -24,9 +25,9 @@ namespace interlin::cli {
 const char* const kProfileHelp =
     R"(interlin profile - axial-turbine cascade profile(s) from 13 parameters -> section CSV
 
-Usage: interlin profile PARAMS.json -o SECTIONS.csv [options]
+Usage: interlin profile PARAMS.{json,toml} -o SECTIONS.csv [options]
 
-Input: a JSON file with the book's 13 parameters (seed 004 §4.1; docs/formats.md, "Cascade
+Input: a JSON or TOML file with the book's 13 parameters (seed 004 §4.1; docs/formats.md, "Cascade
 profile parameters"), optionally a "span" law: per-radius values of any parameter (axial
 width ~ chord, stagger, thickness, ...), which stacks one profile per radius.
 
@@ -49,7 +50,7 @@ Options:
 
 Examples:
   interlin profile data/profiles/turbine_nozzle.json -o profile.csv --curvature k.csv
-  interlin profile data/profiles/turbine_blade_span.json -o blade.csv
+  interlin profile data/profiles/turbine_blade_span.toml -o blade.csv
   interlin loft blade.csv -o blade.stl --cap
 )";
 
@@ -101,40 +102,49 @@ long line_at(const std::string& text, size_t byte) {
              text.begin(), text.begin() + static_cast<long>(std::min(byte, text.size())), '\n'));
 }
 
-double number(const std::string& path, const json& v, const std::string& where) {
-  if (!v.is_number())
-    throw_input_error(path, 0, where + " must be a number");
-  const double d = v.get<double>();
-  if (!std::isfinite(d))
-    throw_input_error(path, 0, where + " must be finite");
-  return d;
-}
+// The parameter file as a JSON value and the line of each value, known for TOML only (a JSON
+// error names the key path, at line 0).
+struct ParamDoc {
+  std::string path;
+  json root;
+  std::map<std::string, long> lines; // JSON pointer -> line
 
-int integer(const std::string& path, const json& v, const std::string& where, int lo, int hi) {
-  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
-    throw_input_error(path, 0,
-                      where + " must be an integer in [" + std::to_string(lo) + ", " +
-                          std::to_string(hi) + "]");
-  return static_cast<int>(v.get<long long>());
-}
+  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+    const auto it = lines.find(pointer);
+    throw_input_error(path, it == lines.end() ? 0 : it->second, what);
+  }
+  double number(const json& v, const std::string& pointer, const std::string& where) const {
+    if (!v.is_number())
+      fail(pointer, where + " must be a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d))
+      fail(pointer, where + " must be finite");
+    return d;
+  }
+  int integer(const json& v, const std::string& pointer, const std::string& where, int lo,
+              int hi) const {
+    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+      fail(pointer, where + " must be an integer in [" + std::to_string(lo) + ", " +
+                        std::to_string(hi) + "]");
+    return static_cast<int>(v.get<long long>());
+  }
+  std::string text(const json& v, const std::string& pointer, const std::string& where) const {
+    if (!v.is_string())
+      fail(pointer, where + " must be a string");
+    return v.get<std::string>();
+  }
+};
 
-std::string text(const std::string& path, const json& v, const std::string& where) {
-  if (!v.is_string())
-    throw_input_error(path, 0, where + " must be a string");
-  return v.get<std::string>();
-}
-
-// Reads and validates the parameter file (docs/formats.md, "Cascade profile parameters").
-ProfileJob read_profile_json(const std::string& path) {
+ParamDoc read_json_document(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string content = ss.str();
-  json doc;
+  ParamDoc doc{path, {}, {}};
   try {
-    doc = json::parse(content);
+    doc.root = json::parse(content);
   } catch (const json::parse_error& e) {
     // nlohmann's text: "[json.exception.parse_error.101] parse error at line L, column C: what".
     const std::string msg = e.what();
@@ -142,77 +152,92 @@ ProfileJob read_profile_json(const std::string& path) {
     throw_input_error(path, line_at(content, e.byte > 0 ? e.byte - 1 : 0),
                       "JSON syntax error: " + (p == std::string::npos ? msg : msg.substr(p + 2)));
   }
-  if (!doc.is_object())
-    throw_input_error(path, 0, "the file must hold one JSON object");
+  return doc;
+}
+
+// Reads and validates the parameter file, JSON or TOML by extension (docs/formats.md,
+// "Cascade profile parameters").
+ProfileJob read_profile_parameters(const std::string& path) {
+  ParamDoc doc;
+  if (lower_extension(path) == ".toml") {
+    TomlAsJson t = read_toml_as_json(path);
+    doc = {path, std::move(t.value), std::move(t.lines)};
+  } else {
+    doc = read_json_document(path);
+  }
+  if (!doc.root.is_object())
+    doc.fail("", "the file must hold one JSON object");
   ProfileJob job;
   CascadeParameters base;
-  for (const auto& [key, value] : doc.items()) {
+  for (const auto& [key, value] : doc.root.items()) {
+    const std::string at = "/" + key;
     if (key == "format") {
-      if (text(path, value, "\"format\"") != "interlin-cascade-profile")
-        throw_input_error(path, 0, "\"format\" must be \"interlin-cascade-profile\"");
+      if (doc.text(value, at, "\"format\"") != "interlin-cascade-profile")
+        doc.fail(at, "\"format\" must be \"interlin-cascade-profile\"");
     } else if (key == "version") {
-      if (integer(path, value, "\"version\"", 1, 1000) != 1)
-        throw_input_error(path, 0, "\"version\" must be 1");
+      if (doc.integer(value, at, "\"version\"", 1, 1000) != 1)
+        doc.fail(at, "\"version\" must be 1");
     } else if (key == "parameters") {
       if (!value.is_object())
-        throw_input_error(path, 0, "\"parameters\" must be an object");
+        doc.fail(at, "\"parameters\" must be an object");
       for (const auto& [name, v] : value.items()) {
         double CascadeParameters::*f = field(name);
         if (!f)
-          throw_input_error(path, 0, "unknown parameter \"" + name + "\" in \"parameters\"");
-        base.*f = number(path, v, "parameter \"" + name + "\"");
+          doc.fail(at + "/" + name, "unknown parameter \"" + name + "\" in \"parameters\"");
+        base.*f = doc.number(v, at + "/" + name, "parameter \"" + name + "\"");
       }
       for (const auto& [name, member] : parameter_fields())
         if (!value.contains(name))
-          throw_input_error(path, 0,
-                            "missing parameter \"" + std::string(name) +
-                                "\" in \"parameters\" (all 13 are required)");
+          doc.fail(at, "missing parameter \"" + std::string(name) +
+                           "\" in \"parameters\" (all 13 are required)");
     } else if (key == "joint") {
-      const std::string j = text(path, value, "\"joint\"");
+      const std::string j = doc.text(value, at, "\"joint\"");
       if (j != "g2" && j != "g3")
-        throw_input_error(path, 0, "\"joint\" must be \"g2\" or \"g3\"");
+        doc.fail(at, "\"joint\" must be \"g2\" or \"g3\"");
       job.options.joint = j == "g2" ? CascadeJoint::g2_quadratic : CascadeJoint::g3_cubic;
     } else if (key == "side_intervals") {
-      job.options.side_intervals = integer(path, value, "\"side_intervals\"", 4, 100000);
+      job.options.side_intervals = doc.integer(value, at, "\"side_intervals\"", 4, 100000);
     } else if (key == "edge_intervals") {
-      job.options.edge_intervals = integer(path, value, "\"edge_intervals\"", 2, 100000);
+      job.options.edge_intervals = doc.integer(value, at, "\"edge_intervals\"", 2, 100000);
     } else if (key == "stack") {
-      const std::string s = text(path, value, "\"stack\"");
+      const std::string s = doc.text(value, at, "\"stack\"");
       if (!kAligns.count(s))
-        throw_input_error(path, 0, "\"stack\" must be \"centroid\", \"le\", \"te\" or \"none\"");
+        doc.fail(at, "\"stack\" must be \"centroid\", \"le\", \"te\" or \"none\"");
       job.align = kAligns.at(s);
     } else if (key != "span") {
-      throw_input_error(path, 0, "unknown key \"" + key + "\"");
+      doc.fail(at, "unknown key \"" + key + "\"");
     }
   }
-  if (!doc.contains("parameters"))
-    throw_input_error(path, 0, "missing \"parameters\" (the 13 profile parameters)");
-  if (!doc.contains("span")) {
+  if (!doc.root.contains("parameters"))
+    doc.fail("", "missing \"parameters\" (the 13 profile parameters)");
+  if (!doc.root.contains("span")) {
     job.stations.push_back({0.0, base});
     return job;
   }
-  const json& span = doc["span"];
+  const json& span = doc.root["span"];
   if (!span.is_object() || !span.contains("radius") || !span["radius"].is_array() ||
       span["radius"].empty())
-    throw_input_error(path, 0, "\"span\" must be an object with a non-empty \"radius\" array");
+    doc.fail("/span", "\"span\" must be an object with a non-empty \"radius\" array");
   job.has_span = true;
   const size_t n = span["radius"].size();
   for (size_t k = 0; k < n; ++k)
-    job.stations.push_back(
-        {number(path, span["radius"][k], "\"span\".\"radius\"[" + std::to_string(k) + "]"), base});
+    job.stations.push_back({doc.number(span["radius"][k], "/span/radius/" + std::to_string(k),
+                                       "\"span\".\"radius\"[" + std::to_string(k) + "]"),
+                            base});
   for (const auto& [name, v] : span.items()) {
     if (name == "radius")
       continue;
+    const std::string at = "/span/" + name;
     double CascadeParameters::*f = field(name);
     if (!f)
-      throw_input_error(path, 0, "unknown parameter \"" + name + "\" in \"span\"");
+      doc.fail(at, "unknown parameter \"" + name + "\" in \"span\"");
     if (!v.is_array() || v.size() != n)
-      throw_input_error(path, 0,
-                        "\"span\".\"" + name + "\" must be an array of " + std::to_string(n) +
-                            " numbers (one per radius)");
+      doc.fail(at, "\"span\".\"" + name + "\" must be an array of " + std::to_string(n) +
+                       " numbers (one per radius)");
     for (size_t k = 0; k < n; ++k)
       job.stations[k].parameters.*f =
-          number(path, v[k], "\"span\".\"" + name + "\"[" + std::to_string(k) + "]");
+          doc.number(v[k], at + "/" + std::to_string(k),
+                     "\"span\".\"" + name + "\"[" + std::to_string(k) + "]");
   }
   return job;
 }
@@ -226,6 +251,8 @@ void require_csv(const std::string& option, const std::string& path) {
 // failure).
 void profile_main(const ParsedArgs& a, std::vector<std::string>& written) {
   const std::string input = single_input(a, "parameter file");
+  if (const std::string ext = lower_extension(input); ext != ".json" && ext != ".toml")
+    throw UsageError("parameter file '" + input + "': expected a .json or .toml file");
   if (!a.has("output"))
     throw UsageError("nothing to do: give -o SECTIONS.csv");
   const std::string output = a.get("output");
@@ -251,7 +278,7 @@ void profile_main(const ParsedArgs& a, std::vector<std::string>& written) {
 
   if (!quiet)
     std::cerr << "reading " << input << "\n";
-  ProfileJob job = read_profile_json(input);
+  ProfileJob job = read_profile_parameters(input);
   if (!joint.empty())
     job.options.joint = joint == "g2" ? CascadeJoint::g2_quadratic : CascadeJoint::g3_cubic;
   if (!stack.empty())

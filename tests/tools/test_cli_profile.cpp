@@ -23,6 +23,7 @@ namespace {
 
 const std::string kNozzle = INTERLIN_DATA_DIR "/profiles/turbine_nozzle.json";
 const std::string kSpan = INTERLIN_DATA_DIR "/profiles/turbine_blade_span.json";
+const std::string kSpanToml = INTERLIN_DATA_DIR "/profiles/turbine_blade_span.toml";
 
 // The shipped nozzle file's parameters (data/profiles/turbine_nozzle.json).
 CascadeParameters nozzle() {
@@ -196,4 +197,77 @@ TEST_CASE("interlin profile: bad input gives one error line, exit 1/2 and no out
   CHECK(m.status == 1);
   CHECK_THAT(m.err, Catch::Contains("does not exist"));
   CHECK(files_in(d) == 1);
+}
+
+TEST_CASE("interlin profile: a TOML parameter file is the same job as its JSON twin",
+          "[cli][profile][toml]") {
+  const TempDir d("profile-toml");
+  const Run j = run("profile " + kSpan + " -o " + (d / "j.csv") + " -q");
+  const Run t = run("profile " + kSpanToml + " -o " + (d / "t.csv") + " -q");
+  INFO(j.err << t.err);
+  REQUIRE(j.status == 0);
+  REQUIRE(t.status == 0);
+  // The shipped .toml and .json say the same thing, so the CSVs agree byte for byte.
+  CHECK(slurp(d / "t.csv") == slurp(d / "j.csv"));
+  // Integer-valued TOML floats and integers are both numbers; a one-profile file without span.
+  write_file(d / "one.toml", "[parameters]\nrelative_pitch = 0.75\naxial_width = 1\n"
+                             "stagger_deg = 40.0\ninlet_angle_deg = 90\noutlet_angle_deg = 13\n"
+                             "le_wedge_deg = 30\nte_wedge_deg = 6\nle_radius = 0.06\n"
+                             "te_radius = 0.01\nte_bend_deg = 13\n"
+                             "max_thickness_position = 0.35\nmax_thickness = 0.15\n"
+                             "throat = 0.17\n");
+  const Run one = run("profile " + (d / "one.toml") + " -o " + (d / "one.csv") + " -q");
+  const Run ref = run("profile " + kNozzle + " -o " + (d / "ref.csv") + " -q");
+  REQUIRE(one.status == 0);
+  REQUIRE(ref.status == 0);
+  CHECK(slurp(d / "one.csv") == slurp(d / "ref.csv")); // the nozzle file's 13 parameters
+}
+
+TEST_CASE("interlin profile: bad TOML gives one error line with the line of the value",
+          "[cli][profile][toml]") {
+  const TempDir d("profile-toml-bad");
+  const std::string good = slurp(kSpanToml);
+  REQUIRE(good.find("le_radius = 2.4\n") != std::string::npos);
+  const auto line_of = [&](const std::string& what) {
+    return std::to_string(1 + std::count(good.begin(), good.begin() + good.find(what), '\n'));
+  };
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    return s.replace(s.find(from), from.size(), to);
+  };
+  struct Case {
+    std::string toml, expect;
+  };
+  const Case cases[] = {
+      {replaced("le_radius = 2.4", "le_radius = \"big\""),
+       "t.toml:" + line_of("le_radius = 2.4") + ": parameter \"le_radius\" must be a number"},
+      {replaced("le_radius = 2.4", "le_radius = nan"),
+       "t.toml:" + line_of("le_radius = 2.4") + ": parameter \"le_radius\" must be finite"},
+      {replaced("le_radius = 2.4", "le_radius = 1979-05-27"),
+       "t.toml:" + line_of("le_radius = 2.4") + ": parameter \"le_radius\" must be a number"},
+      {replaced("te_radius = 0.4", "te_radius = 0.4\nstager = 3"),
+       "t.toml:" + line_of("te_bend_deg") + ": unknown parameter \"stager\""},
+      {replaced("throat = 0", "throat = 0\nthroat = 1"), // the line of the repeated key
+       "t.toml:" + std::to_string(std::stoi(line_of("throat = 0")) + 1) + ": TOML syntax error:"},
+      {replaced("axial_width    = [36, 38, 40, 42, 44]", "axial_width = [36, 38]"),
+       "t.toml:" + line_of("axial_width    =") +
+           ": \"span\".\"axial_width\" must be an array of 5"},
+      {replaced("joint = \"g3\"", "joint = \"g5\""),
+       "t.toml:" + line_of("joint =") + ": \"joint\" must be \"g2\" or \"g3\""},
+      {replaced("le_radius = 2.4", "le_radius = -2.4"), "leading-edge radius must be > 0"}};
+  for (size_t i = 0; i < std::size(cases); ++i) {
+    const Case& c = cases[i];
+    write_file(d / "t.toml", c.toml);
+    const Run r = run("profile " + (d / "t.toml") + " -o " + (d / "out.csv") + " -q");
+    INFO("case " << i << "\nstderr: " << r.err);
+    CHECK(r.status == 1);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_THAT(r.err, Catch::StartsWith("interlin: ") && Catch::Contains(c.expect));
+    CHECK(files_in(d) == 1); // only the input: no output, no temporary file
+  }
+  // A parameter file that is neither .json nor .toml is a usage error (exit 2).
+  write_file(d / "t.txt", good);
+  const Run u = run("profile " + (d / "t.txt") + " -o " + (d / "out.csv"));
+  CHECK(u.status == 2);
+  CHECK_THAT(u.err, Catch::Contains("expected a .json or .toml file"));
 }
