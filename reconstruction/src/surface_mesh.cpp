@@ -3,7 +3,6 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -152,121 +151,6 @@ double fan_volume(const Eigen::MatrixXd& V, const std::vector<int>& loop,
 }
 
 } // namespace
-
-Eigen::MatrixXi triangulate_loop(const Eigen::MatrixXd& P) {
-  const int n = int(P.rows());
-  if (n < 3 || P.cols() != 3)
-    throw std::invalid_argument("triangulate_loop: need at least 3 points in 3D, got " +
-                                std::to_string(P.rows()) + " by " + std::to_string(P.cols()));
-  Eigen::MatrixXi T(n - 2, 3);
-  // Best-fit plane: Newell normal (the loop's vector area) through the centroid. Projected with
-  // the basis (e1, e2, normal) right-handed, the loop runs counter-clockwise in 2D.
-  Eigen::Vector3d N = Eigen::Vector3d::Zero();
-  const Eigen::RowVector3d c = P.colwise().mean();
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d a = P.row(i) - c, b = P.row((i + 1) % n) - c;
-    N += a.cross(b);
-  }
-  if (!(N.norm() > 0) || !std::isfinite(N.norm()))
-    N = Eigen::Vector3d::UnitZ(); // no area: any projection; the fallback keeps the topology
-  N.normalize();
-  const Eigen::Vector3d e1 = N.unitOrthogonal(), e2 = N.cross(e1);
-  Eigen::MatrixX2d Q(n, 2);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d d = P.row(i) - c;
-    Q(i, 0) = d.dot(e1);
-    Q(i, 1) = d.dot(e2);
-  }
-  auto orient = [&](int a, int b, int q) {
-    return (Q(b, 0) - Q(a, 0)) * (Q(q, 1) - Q(a, 1)) - (Q(b, 1) - Q(a, 1)) * (Q(q, 0) - Q(a, 0));
-  };
-  auto same = [&](int a, int b) { return Q(a, 0) == Q(b, 0) && Q(a, 1) == Q(b, 1); };
-  // side(a, b, q): +1 / -1 when q is left / right of the line a -> b, 0 when within round-off.
-  // Points collinear in 3D stay collinear after projection only up to a few ulps of the
-  // coordinates, i.e. about eps R |ab| in orient (R the loop's size), so the threshold scales
-  // with the local edge lengths and tiny leading-edge ears stay valid. Collinear blocks a
-  // diagonal and is not convex.
-  const double R = Q.cwiseAbs().maxCoeff();
-  auto side = [&](int a, int b, int q) {
-    const double o = orient(a, b, q);
-    const double noise = 1e-13 * R * ((Q.row(b) - Q.row(a)).norm() + (Q.row(q) - Q.row(a)).norm());
-    return o > noise ? 1 : o < -noise ? -1 : 0;
-  };
-  // Smallest corner angle of triangle (a, b, c) in 3D: the ear quality.
-  auto min_angle = [&](int a, int b, int d) {
-    const Eigen::Vector3d pa = P.row(a), pb = P.row(b), pd = P.row(d);
-    return std::min({turning_angle(pb - pa, pd - pa), turning_angle(pa - pb, pd - pb),
-                     turning_angle(pa - pd, pb - pd)});
-  };
-
-  std::vector<int> prev(n), next(n);
-  for (int i = 0; i < n; ++i) {
-    prev[i] = (i + n - 1) % n;
-    next[i] = (i + 1) % n;
-  }
-  // is_ear(i): strictly convex, and no other remaining vertex inside or on the triangle
-  // (vertices at the same position as a corner do not block).
-  auto is_ear = [&](int i) {
-    const int a = prev[i], b = next[i];
-    if (side(a, i, b) <= 0)
-      return false;
-    for (int q = next[b]; q != a; q = next[q]) {
-      if (same(q, a) || same(q, i) || same(q, b))
-        continue;
-      if (side(a, i, q) >= 0 && side(i, b, q) >= 0 && side(b, a, q) >= 0)
-        return false;
-    }
-    return true;
-  };
-  std::vector<char> ear(n);
-  std::vector<double> quality(n);
-  auto update = [&](int i) {
-    ear[i] = is_ear(i);
-    quality[i] = ear[i] ? min_angle(prev[i], i, next[i]) : 0.0;
-  };
-  for (int i = 0; i < n; ++i)
-    update(i);
-
-  int remaining = n, first = 0, t = 0;
-  while (remaining > 3) {
-    auto best_ear = [&]() {
-      int best = -1, i = first;
-      for (int k = 0; k < remaining; ++k, i = next[i])
-        if (ear[i] && (best < 0 || quality[i] > quality[best]))
-          best = i;
-      return best;
-    };
-    int best = best_ear();
-    if (best < 0) { // cached flags may be stale (a clipped vertex blocked an ear): recompute
-      int i = first;
-      for (int k = 0; k < remaining; ++k, i = next[i])
-        update(i);
-      best = best_ear();
-    }
-    if (best < 0) { // no valid ear: clip the most convex vertex (keeps a topological disk)
-      int i = first;
-      double most = -std::numeric_limits<double>::infinity();
-      for (int k = 0; k < remaining; ++k, i = next[i]) {
-        const double o = orient(prev[i], i, next[i]);
-        if (o > most) {
-          most = o;
-          best = i;
-        }
-      }
-    }
-    const int a = prev[best], b = next[best];
-    T.row(t++) << a, best, b;
-    next[a] = b;
-    prev[b] = a;
-    if (first == best)
-      first = b;
-    --remaining;
-    update(a);
-    update(b);
-  }
-  T.row(t) << prev[first], first, next[first];
-  return T;
-}
 
 void surface_mesh(const PiecewiseSurface& s, const SurfaceMeshOptions& o, Eigen::MatrixXd& V,
                   Eigen::MatrixXi& F, Eigen::VectorXd* u_samples, Eigen::VectorXd* v_samples) {

@@ -203,29 +203,6 @@ VectorXd turning_angles(const MatrixXd& P) {
   return t;
 }
 
-// Checks that T triangulates the closed loop 0..n-1: every loop edge i -> i+1 used once in the
-// loop's direction, every other edge twice in opposite directions (a disk bounded by the loop).
-void check_disk(const MatrixXi& T, Index n) {
-  REQUIRE(T.rows() == n - 2);
-  std::vector<std::pair<long, long>> directed;
-  for (Index f = 0; f < T.rows(); ++f)
-    for (int j = 0; j < 3; ++j)
-      directed.emplace_back(T(f, j), T(f, (j + 1) % 3));
-  std::sort(directed.begin(), directed.end());
-  long loop_edges = 0, bad = 0;
-  for (const auto& [a, b] : directed) {
-    const bool loop_edge = b == (a + 1) % n;
-    const long same = std::count(directed.begin(), directed.end(), std::make_pair(a, b));
-    const long opposite = std::count(directed.begin(), directed.end(), std::make_pair(b, a));
-    if (loop_edge)
-      loop_edges += same == 1 && opposite == 0;
-    else
-      bad += !(same == 1 && opposite == 1);
-  }
-  CHECK(loop_edges == n);
-  CHECK(bad == 0);
-}
-
 } // namespace
 
 TEST_CASE("check_mesh on meshes with known topology and geometry", "[mesh]") {
@@ -551,56 +528,6 @@ TEST_CASE("surface_mesh orients clockwise sections outward", "[mesh]") {
   CHECK(r.volume > 0);
   // exact_volume is signed by the section's sense; h ~ 1/64 gives ~1e-3 relative error.
   CHECK(r.volume == Approx(-exact_volume(w)).epsilon(0.01));
-}
-
-TEST_CASE("triangulate_loop triangulates non-convex, non-planar loops", "[mesh]") {
-  SECTION("comb") {
-    // A comb with 8 deep teeth, lifted out of plane by a gentle saddle.
-    std::vector<Eigen::RowVector3d> pts;
-    const int teeth = 8;
-    pts.push_back({0, 0, 0});
-    pts.push_back({2.0 * teeth, 0, 0});
-    for (int k = teeth - 1; k >= 0; --k) {
-      pts.push_back({2.0 * k + 1.6, 5, 0});
-      pts.push_back({2.0 * k + 1.4, 0.5, 0});
-      pts.push_back({2.0 * k + 0.6, 0.5, 0});
-      pts.push_back({2.0 * k + 0.4, 5, 0});
-    }
-    pts.pop_back();
-    pts.push_back({0, 5, 0});
-    MatrixXd P(Index(pts.size()), 3);
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      P.row(Index(i)) = pts[i];
-      P(Index(i), 2) = 0.01 * (P(Index(i), 0) - teeth) * (P(Index(i), 1) - 2.5);
-    }
-    const MatrixXi T = triangulate_loop(P);
-    check_disk(T, P.rows());
-    // All triangles counter-clockwise seen from +z (the loop's own sense), hence a tiling.
-    long cw = 0;
-    double area = 0;
-    for (Index f = 0; f < T.rows(); ++f) {
-      const Eigen::Vector2d a = P.row(T(f, 0)).head<2>(), b = P.row(T(f, 1)).head<2>(),
-                            c = P.row(T(f, 2)).head<2>();
-      const double o = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-      cw += o <= 0;
-      area += 0.5 * o;
-    }
-    CHECK(cw == 0);
-    // The tiles add up to the polygon area (shoelace, in the xy projection).
-    double shoelace = 0;
-    for (Index i = 0; i < P.rows(); ++i) {
-      const Index j = (i + 1) % P.rows();
-      shoelace += 0.5 * (P(i, 0) * P(j, 1) - P(j, 0) * P(i, 1));
-    }
-    CHECK(area == Approx(shoelace).epsilon(1e-12));
-  }
-  SECTION("clockwise loop keeps its direction") {
-    MatrixXd P(5, 3);
-    P << 0, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.4, 0, 1, 0, 0; // clockwise, one reflex vertex
-    const MatrixXi T = triangulate_loop(P);
-    check_disk(T, 5);
-  }
-  CHECK_THROWS_AS(triangulate_loop(MatrixXd::Zero(2, 3)), std::invalid_argument);
 }
 
 TEST_CASE("surface_mesh of an open surface and argument errors", "[mesh]") {

@@ -26,7 +26,7 @@ struct SurfaceMeshOptions {
 //   quarter spacing to a required value is dropped, so that the rows at required_v are evaluated
 //   exactly at those parameters.
 // Quads are split along their shorter diagonal. With cap, each v-boundary loop is triangulated by
-// ear clipping in the loop's best-fit plane (Newell normal), sharing the loop vertices.
+// triangulate_loop (constrained Delaunay in the loop's best-fit plane), sharing the loop vertices.
 // Orientation: consistent; faces point along S_u x S_v for open-u surfaces; closed_u meshes are
 // oriented outward (positive signed volume, counting the caps, or for an uncapped mesh the
 // virtual fans from each boundary loop's centroid).
@@ -49,9 +49,12 @@ void surface_mesh(const PiecewiseSurface& s, const SurfaceMeshOptions& o, Eigen:
 
 // Triangulates one closed polygon in 3D (a simple loop, possibly non-planar and non-convex) by
 // ear clipping in its best-fit plane (Newell normal through the centroid), clipping the ear with
-// the largest smallest angle first. When no valid ear exists (a projection that self-overlaps,
-// degenerate loops) the most convex vertex is clipped, so the result is always a topological
-// disk on the loop vertices.
+// the largest smallest angle first, then Lawson edge flips to the constrained Delaunay
+// triangulation of the projected polygon (the largest smallest angle of all triangulations on
+// the loop's vertices, in that plane). When no valid ear exists (a projection that self-overlaps,
+// degenerate loops) the most convex vertex is clipped and only flips that keep both triangles
+// counter-clockwise in the plane are taken, so the result is always a topological disk on the
+// loop vertices.
 // Inputs:  P  #P by 3 loop vertices in order (#P >= 3, last not repeating the first)
 // Outputs: T  (#P - 2) by 3 row indices into P; each triangle (a, b, c) runs in the loop's
 //             direction, so T's boundary is the loop traversed as given.
