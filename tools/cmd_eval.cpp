@@ -4,17 +4,10 @@
 
 #include "interlin/interflatation/model.h"
 #include "interlin/reconstruction/atomic_file.h"
-#include "interlin/reconstruction/input_error.h"
+#include "interlin/reconstruction/points_csv.h"
 
-#include <array>
-#include <cerrno>
-#include <charconv>
-#include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <iostream>
-#include <string_view>
 
 namespace interlin::cli {
 
@@ -47,128 +40,6 @@ Examples:
 )";
 
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split_commas(std::string_view line) {
-  std::vector<std::string_view> f;
-  for (;;) {
-    const auto c = line.find(',');
-    f.push_back(trim(line.substr(0, c)));
-    if (c == std::string_view::npos)
-      return f;
-    line.remove_prefix(c + 1);
-  }
-}
-
-std::string lower(std::string_view s) {
-  std::string r(s);
-  for (char& c : r)
-    if (c >= 'A' && c <= 'Z')
-      c = static_cast<char>(c - 'A' + 'a');
-  return r;
-}
-
-// The whole field must be one finite number (an optional leading '+').
-void parse_number(std::string_view field, double& v, const std::string& path, long line,
-                  const char* column) {
-  std::string_view t = field;
-  bool ok = !t.empty();
-  if (ok && t.front() == '+') { // one leading '+' is accepted, not "+-1" or "++1"
-    t.remove_prefix(1);
-    ok = !t.empty() && t.front() != '+' && t.front() != '-';
-  }
-  const auto r = ok ? std::from_chars(t.data(), t.data() + t.size(), v)
-                    : std::from_chars_result{t.data(), std::errc::invalid_argument};
-  if (r.ec == std::errc::result_out_of_range)
-    throw_input_error(path, line,
-                      std::string("column ") + column + ": '" + std::string(field) +
-                          "' is out of the range of a double");
-  if (r.ec != std::errc() || r.ptr != t.data() + t.size())
-    throw_input_error(path, line,
-                      std::string("column ") + column + ": '" + std::string(field) +
-                          "' is not a number");
-  if (!std::isfinite(v))
-    throw_input_error(path, line,
-                      std::string("column ") + column + ": '" + std::string(field) +
-                          "' is not a finite value (NaN and infinity are not allowed)");
-}
-
-Points3 read_points(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::string text;
-  long number = 0;
-  std::array<int, 3> col{-1, -1, -1};
-  std::size_t fields = 0;
-  long header_line = 0;
-  std::vector<std::array<double, 3>> rows;
-  while (std::getline(in, text)) {
-    ++number;
-    std::string_view line = text;
-    if (number == 1 && line.substr(0, 3) == "\xEF\xBB\xBF")
-      line.remove_prefix(3);
-    const std::string_view t = trim(line);
-    if (t.empty() || t.front() == '#')
-      continue;
-    const auto f = split_commas(line);
-    if (header_line == 0) {
-      header_line = number;
-      fields = f.size();
-      for (std::size_t i = 0; i < f.size(); ++i) {
-        const std::string name = lower(f[i]);
-        for (int c = 0; c < 3; ++c)
-          if (name == std::string(1, static_cast<char>('x' + c))) {
-            if (col[c] >= 0)
-              throw_input_error(path, number,
-                                "column " + name + " appears twice in the header (fields " +
-                                    std::to_string(col[c] + 1) + " and " + std::to_string(i + 1) +
-                                    ")");
-            col[c] = static_cast<int>(i);
-          }
-      }
-      std::string missing;
-      for (int c = 0; c < 3; ++c)
-        if (col[c] < 0)
-          missing += std::string(missing.empty() ? "" : ", ") + static_cast<char>('x' + c);
-      if (!missing.empty())
-        throw_input_error(path, number,
-                          "header lacks the column(s) " + missing +
-                              ": a points file starts with a header naming the columns x, y, z");
-      continue;
-    }
-    if (f.size() != fields)
-      throw_input_error(path, number,
-                        "expected " + std::to_string(fields) +
-                            " comma-separated fields (as in the header on line " +
-                            std::to_string(header_line) + "), found " + std::to_string(f.size()));
-    std::array<double, 3> p{};
-    for (int c = 0; c < 3; ++c) {
-      const char name[2] = {static_cast<char>('x' + c), 0};
-      parse_number(f[static_cast<std::size_t>(col[c])], p[c], path, number, name);
-    }
-    rows.push_back(p);
-  }
-  if (in.bad())
-    throw_input_error(path, 0, std::string("cannot read: ") + std::strerror(errno));
-  if (header_line == 0)
-    throw_input_error(path, 0,
-                      "no header: the file is empty or holds only comments and blank lines");
-  if (rows.empty())
-    throw_input_error(path, 0, "no points after the header on line " + std::to_string(header_line));
-  Points3 P(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      P(static_cast<Eigen::Index>(i), c) = rows[i][c];
-  return P;
-}
 
 void write_values(std::ostream& out, const Points3& P, const Eigen::VectorXd& F, const Points3* G) {
   out << (G ? "x,y,z,F,Fx,Fy,Fz\n" : "x,y,z,F\n");
@@ -204,7 +75,7 @@ void eval_main(const ParsedArgs& a, std::vector<std::string>&) {
   progress("reading " + a.positional[0]);
   const ImplicitFunction f = load_model(a.positional[0], mo);
   progress("reading " + a.positional[1]);
-  const Points3 P = read_points(a.positional[1]);
+  const Points3 P = read_points_csv(a.positional[1]);
   progress("evaluating at " + std::to_string(P.rows()) + " points");
   Eigen::VectorXd F(P.rows());
   Points3 G(P.rows(), 3);

@@ -7,6 +7,29 @@
 
 namespace interlin {
 
+bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_blank(s.front()))
+    s.remove_prefix(1);
+  while (!s.empty() && is_blank(s.back()))
+    s.remove_suffix(1);
+  return s;
+}
+
+void split_commas(std::string_view line, std::vector<std::string_view>& out) {
+  out.clear();
+  for (;;) {
+    const size_t c = line.find(',');
+    out.push_back(trim(line.substr(0, c)));
+    if (c == std::string_view::npos)
+      return;
+    line.remove_prefix(c + 1);
+  }
+}
+
 std::string ascii_lower(std::string_view s) {
   std::string r(s);
   for (char& c : r)

@@ -1,11 +1,21 @@
 #pragma once
-// Fields of the section and guide readers: ASCII lower case for header names, and the strict
-// number and integer rules with their error messages (docs/formats.md, "Section files").
+// Fields of the section, guide and points readers: ASCII lower case for header names, and the
+// strict number and integer rules with their error messages (docs/formats.md, "Section files").
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace interlin {
+
+// Space, \t, \r, \v or \f: what trim removes and what separates plain-format fields.
+bool is_blank(char c);
+
+// `s` without leading and trailing blanks.
+std::string_view trim(std::string_view s);
+
+// The comma-separated fields of `line`, each trimmed, into `out` ("1,,2" has three fields).
+void split_commas(std::string_view line, std::vector<std::string_view>& out);
 
 // `s` with A-Z lowered (header names are matched case-insensitively, independent of locale).
 std::string ascii_lower(std::string_view s);

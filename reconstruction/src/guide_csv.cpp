@@ -18,25 +18,6 @@ namespace {
 
 using std::string_view;
 
-string_view trim(string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<string_view> split(string_view line) {
-  std::vector<string_view> out;
-  for (size_t start = 0;;) {
-    const size_t c = line.find(',', start);
-    out.push_back(trim(line.substr(start, c == string_view::npos ? string_view::npos : c - start)));
-    if (c == string_view::npos)
-      return out;
-    start = c + 1;
-  }
-}
-
 struct Row {
   long line, index;
   Eigen::Vector3d p;
@@ -56,6 +37,7 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
   std::map<std::string, std::vector<Row>> rows; // per guide
   std::map<std::string, long> last_line;        // last row of each guide (contiguity check)
   std::string previous;
+  std::vector<string_view> f; // the fields of the current line
   while (std::getline(in, text)) {
     ++lineno;
     string_view line(text);
@@ -64,7 +46,7 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
     const string_view t = trim(line);
     if (t.empty() || t.front() == '#')
       continue;
-    const std::vector<string_view> f = split(line);
+    split_commas(line, f);
     if (!header) {
       header = true;
       nfields = f.size();

@@ -24,32 +24,8 @@ namespace {
 
 using std::string_view;
 
-bool is_blank(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-string_view trim(string_view s) {
-  while (!s.empty() && is_blank(s.front()))
-    s.remove_prefix(1);
-  while (!s.empty() && is_blank(s.back()))
-    s.remove_suffix(1);
-  return s;
-}
-
 std::string quote(string_view s) {
   return "'" + std::string(s) + "'";
-}
-
-// Comma-separated fields, each trimmed.
-void split_csv(string_view line, std::vector<string_view>& out) {
-  out.clear();
-  for (;;) {
-    const size_t c = line.find(',');
-    out.push_back(trim(line.substr(0, c)));
-    if (c == string_view::npos)
-      return;
-    line.remove_prefix(c + 1);
-  }
 }
 
 // Fields separated by commas and/or whitespace: the line is cut at commas and each piece at
@@ -169,7 +145,7 @@ private:
     const bool has_comma = first.find(',') != string_view::npos;
     std::vector<std::string> names;
     if (has_comma) {
-      split_csv(first, fields_);
+      split_commas(first, fields_);
       for (string_view f : fields_)
         names.push_back(ascii_lower(f));
     }
@@ -242,7 +218,7 @@ private:
       if (t.empty() || is_comment(t))
         continue;
       const long n = lines.number();
-      split_csv(t, fields_);
+      split_commas(t, fields_);
       if (fields_.size() != ncol_)
         fail(n, "expected " + std::to_string(ncol_) +
                     " comma-separated fields (as in the header "

@@ -1,0 +1,19 @@
+#pragma once
+// Points files: a CSV with a header naming the columns x, y, z (any order, case-insensitive,
+// other columns ignored), one point per line; '#' comment lines and blank lines are skipped, a
+// UTF-8 byte-order mark is allowed (docs/formats.md, "Points files").
+
+#include <Eigen/Core>
+#include <string>
+
+namespace interlin {
+
+// Reads the points of a points file, in file order.
+// Inputs:  path  the file; used in messages
+// Outputs: P     #P by 3, #P >= 1, every value finite
+// Throws InputError "PATH:LINE: message" (or "PATH: message") for an unreadable file, a missing
+// header or column, a repeated column, a row with another field count than the header, a field
+// that is not a finite number, and a file without points.
+Eigen::MatrixX3d read_points_csv(const std::string& path);
+
+} // namespace interlin
