@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "toml_as_json.h"
 
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/atomic_file.h"
 #include "interlin/reconstruction/input_error.h"
 #include "interlin/reconstruction/section_csv.h"
@@ -12,13 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
 
 namespace interlin::cli {
 
@@ -136,12 +133,7 @@ struct ParamDoc {
 };
 
 ParamDoc read_json_document(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string content = ss.str();
+  const std::string content = read_input_file(path);
   ParamDoc doc{path, {}, {}};
   try {
     doc.root = json::parse(content);

@@ -1,12 +1,10 @@
 #include "toml_as_json.h"
 
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/input_error.h"
 
 #include <toml++/toml.h>
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 
 namespace interlin::cli {
@@ -53,14 +51,10 @@ nlohmann::json convert(const toml::node& node, const std::string& pointer,
 } // namespace
 
 TomlAsJson read_toml_as_json(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::stringstream content;
-  content << in.rdbuf();
+  const std::string content = read_input_file(path);
   toml::table root;
   try {
-    root = toml::parse(content.str(), path);
+    root = toml::parse(content, path);
   } catch (const toml::parse_error& e) {
     throw_input_error(path, static_cast<long>(e.source().begin.line),
                       "TOML syntax error: " + std::string(e.description()) + " (column " +

@@ -1,6 +1,7 @@
 // R-function model files: evaluation of the parsed statements into an expression, with the
 // table of built-in functions (docs/formats.md, "R-function model files").
 #include "interlin/interflatation/model.h"
+#include "interlin/interflatation/read_input_file.h"
 
 #include "interlin/interflatation/model_expression.h"
 
@@ -17,10 +18,7 @@
 #include "model_parser.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <numbers>
@@ -523,14 +521,7 @@ ModelExpression parse_model_expression(const std::string& text, const std::strin
 }
 
 ModelExpression load_model_expression(const std::string& path, const ModelOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw InputError(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad())
-    throw InputError(path + ": cannot read: " + std::strerror(errno));
-  return parse_model_expression(s.str(), path, options);
+  return parse_model_expression(read_input_file(path), path, options);
 }
 
 ImplicitFunction parse_model(const std::string& text, const std::string& name,
