@@ -2,7 +2,7 @@
 // Rotor 37 blade sections for the benchmarks, read once (data/rotor37/sections.csv: 13 closed
 // sections of 198 points).
 
-#include "interlin/reconstruction/section_csv.h"
+#include "interlin/reconstruction/io/section_csv.h"
 
 #include <vector>
 

@@ -5,9 +5,9 @@
 //    valve model in sub-boxes, marching cubes, merge) against grid points and sub-box count.
 #include "vtk_contour.h"
 
-#include "interlin/interflatation/model.h"
-#include "interlin/reconstruction/implicit_mesh.h"
-#include "interlin/reconstruction/marching_cubes.h"
+#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/reconstruction/meshing/implicit_mesh.h"
+#include "interlin/reconstruction/meshing/marching_cubes.h"
 
 #include <benchmark/benchmark.h>
 

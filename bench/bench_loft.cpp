@@ -4,7 +4,7 @@
 
 #include "bench_data.h"
 
-#include "interlin/reconstruction/loft.h"
+#include "interlin/reconstruction/loft/loft.h"
 
 #include <benchmark/benchmark.h>
 

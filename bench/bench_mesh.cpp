@@ -4,9 +4,9 @@
 
 #include "bench_data.h"
 
-#include "interlin/reconstruction/loft.h"
-#include "interlin/reconstruction/mesh_io.h"
-#include "interlin/reconstruction/surface_mesh.h"
+#include "interlin/reconstruction/loft/loft.h"
+#include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/meshing/surface_mesh.h"
 
 #include <benchmark/benchmark.h>
 

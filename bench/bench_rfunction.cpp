@@ -4,7 +4,7 @@
 // a pure arithmetic loop on 1 and 2 threads (the parallelism the machine offers during the run),
 // and the same points evaluated one call per point (ratio = what batching buys).
 
-#include "interlin/interflatation/model.h"
+#include "interlin/interflatation/rfunctions/model.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,8 +1,8 @@
 // Volumes of the seed models by stratified Monte Carlo (interlin::estimate_volume), the reference
 // that mesh volumes converge to (digest 000 T19: impeller ~1234, T21: UAV ~7.565, +-0.5 %).
 // Usage: rf_volumes [MODEL.rf CELL ...]   (default: the impeller and the UAV at two cell sizes)
-#include "interlin/interflatation/model.h"
-#include "interlin/interflatation/volume_estimate.h"
+#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/interflatation/rfunctions/volume_estimate.h"
 
 #include <algorithm>
 #include <chrono>

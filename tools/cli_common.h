@@ -5,7 +5,7 @@
 
 #include "cli_args.h"
 
-#include "interlin/interflatation/model.h"
+#include "interlin/interflatation/rfunctions/model.h"
 
 #include <chrono>
 #include <functional>

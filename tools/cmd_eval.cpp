@@ -2,9 +2,9 @@
 #include "cli_common.h"
 #include "commands.h"
 
-#include "interlin/interflatation/model.h"
-#include "interlin/reconstruction/atomic_file.h"
-#include "interlin/reconstruction/points_csv.h"
+#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/reconstruction/io/atomic_file.h"
+#include "interlin/reconstruction/io/points_csv.h"
 
 #include <cstdio>
 #include <iostream>

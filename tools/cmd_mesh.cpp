@@ -4,14 +4,14 @@
 #include "cli_common.h"
 #include "commands.h"
 
-#include "interlin/interflatation/model.h"
-#include "interlin/reconstruction/edge_flips.h"
-#include "interlin/reconstruction/implicit_mesh.h"
-#include "interlin/reconstruction/input_error.h"
-#include "interlin/reconstruction/mesh_check.h"
-#include "interlin/reconstruction/mesh_io.h"
-#include "interlin/reconstruction/preview.h"
-#include "interlin/reconstruction/surface_smoothing.h"
+#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/reconstruction/meshing/edge_flips.h"
+#include "interlin/reconstruction/meshing/implicit_mesh.h"
+#include "interlin/reconstruction/io/input_error.h"
+#include "interlin/reconstruction/meshing/mesh_check.h"
+#include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/io/preview.h"
+#include "interlin/reconstruction/meshing/surface_smoothing.h"
 
 #include <algorithm>
 #include <iostream>

@@ -5,9 +5,9 @@
 #include "toml_as_json.h"
 
 #include "interlin/interflatation/read_input_file.h"
-#include "interlin/reconstruction/atomic_file.h"
-#include "interlin/reconstruction/input_error.h"
-#include "interlin/reconstruction/section_csv.h"
+#include "interlin/reconstruction/io/atomic_file.h"
+#include "interlin/reconstruction/io/input_error.h"
+#include "interlin/reconstruction/io/section_csv.h"
 #include "interlin/splines/cascade_stack.h"
 
 #include <nlohmann/json.hpp>

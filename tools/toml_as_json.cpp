@@ -1,7 +1,7 @@
 #include "toml_as_json.h"
 
 #include "interlin/interflatation/read_input_file.h"
-#include "interlin/reconstruction/input_error.h"
+#include "interlin/reconstruction/io/input_error.h"
 
 #include <toml++/toml.h>
 

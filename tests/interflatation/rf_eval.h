@@ -1,7 +1,7 @@
 #pragma once
 // Helpers of the R-function tests: compile an expression and evaluate it at single points.
 
-#include "interlin/interflatation/expression.h"
+#include "interlin/interflatation/rfunctions/expression.h"
 
 #include <Eigen/Core>
 

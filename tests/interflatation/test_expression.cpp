@@ -3,10 +3,10 @@
 // undefined values, constant folding and common sub-expressions.
 #include "rf_eval.h"
 
-#include "interlin/interflatation/model.h"
-#include "interlin/interflatation/model_expression.h"
-#include "interlin/interflatation/normalization.h"
-#include "interlin/interflatation/r_operations.h"
+#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/interflatation/rfunctions/model_expression.h"
+#include "interlin/interflatation/rfunctions/normalization.h"
+#include "interlin/interflatation/rfunctions/r_operations.h"
 
 #include <catch2/catch.hpp>
 

@@ -4,7 +4,7 @@
 #include "rf_eval.h"
 
 #include "interlin/interflatation/input_error.h"
-#include "interlin/interflatation/model.h"
+#include "interlin/interflatation/rfunctions/model.h"
 
 #include <catch2/catch.hpp>
 

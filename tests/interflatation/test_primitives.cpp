@@ -2,9 +2,9 @@
 // T14, closed-form gradients, and |grad| = 1 on the boundary of every normalised primitive.
 #include "rf_eval.h"
 
-#include "interlin/interflatation/normalization.h"
-#include "interlin/interflatation/primitives.h"
-#include "interlin/interflatation/r_operations.h"
+#include "interlin/interflatation/rfunctions/normalization.h"
+#include "interlin/interflatation/rfunctions/primitives.h"
+#include "interlin/interflatation/rfunctions/r_operations.h"
 
 #include <catch2/catch.hpp>
 

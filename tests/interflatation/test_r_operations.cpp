@@ -3,7 +3,7 @@
 #include "rf_eval.h"
 #include "support/test_support.h"
 
-#include "interlin/interflatation/r_operations.h"
+#include "interlin/interflatation/rfunctions/r_operations.h"
 
 #include <catch2/catch.hpp>
 

@@ -3,11 +3,11 @@
 // original at the point).
 #include "rf_eval.h"
 
-#include "interlin/interflatation/folding.h"
-#include "interlin/interflatation/frame_blending.h"
-#include "interlin/interflatation/primitives.h"
-#include "interlin/interflatation/r_operations.h"
-#include "interlin/interflatation/transforms.h"
+#include "interlin/interflatation/rfunctions/folding.h"
+#include "interlin/interflatation/rfunctions/frame_blending.h"
+#include "interlin/interflatation/rfunctions/primitives.h"
+#include "interlin/interflatation/rfunctions/r_operations.h"
+#include "interlin/interflatation/rfunctions/transforms.h"
 
 #include <catch2/catch.hpp>
 

@@ -2,10 +2,10 @@
 // against the observed scatter), then the seed models against digest 000 T19 and T21.
 #include "rf_eval.h"
 
-#include "interlin/interflatation/model.h"
-#include "interlin/interflatation/primitives.h"
-#include "interlin/interflatation/r_operations.h"
-#include "interlin/interflatation/volume_estimate.h"
+#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/interflatation/rfunctions/primitives.h"
+#include "interlin/interflatation/rfunctions/r_operations.h"
+#include "interlin/interflatation/rfunctions/volume_estimate.h"
 
 #include <catch2/catch.hpp>
 

@@ -5,8 +5,8 @@
 // up to vertex order".
 
 #include "interlin/interflatation/implicit_function.h"
-#include "interlin/reconstruction/implicit_mesh.h"
-#include "interlin/reconstruction/mesh_check.h"
+#include "interlin/reconstruction/meshing/implicit_mesh.h"
+#include "interlin/reconstruction/meshing/mesh_check.h"
 
 #include <Eigen/Core>
 #include <algorithm>

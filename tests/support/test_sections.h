@@ -2,8 +2,8 @@
 // Section data shared by the loft tests: the NASA Rotor 37 blade sections (data/rotor37) with
 // their edge lines, and sections sampled from bodies known in closed form.
 
-#include "interlin/reconstruction/guide_csv.h"
-#include "interlin/reconstruction/section_csv.h"
+#include "interlin/reconstruction/io/guide_csv.h"
+#include "interlin/reconstruction/io/section_csv.h"
 
 #include <Eigen/Core>
 #include <cmath>

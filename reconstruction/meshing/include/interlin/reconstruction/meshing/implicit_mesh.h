@@ -1,0 +1,74 @@
+#pragma once
+// Implicit body -> closed triangle mesh: seed 002's parallel sub-box scheme (the bounding box cut
+// into sub-boxes that share their boundary planes, each sampled and triangulated on its own
+// thread), marching cubes with the asymptotic decider in each sub-box, an exact merge of the
+// vertices on shared planes, and seed 003's projection of every vertex onto F = 0.
+
+#include "interlin/interflatation/implicit_function.h"
+#include "interlin/reconstruction/meshing/project_to_zero.h"
+#include "interlin/reconstruction/meshing/regular_grid.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <functional>
+#include <string>
+
+namespace interlin {
+
+struct ImplicitMeshOptions {
+  // Region to mesh; empty: the function's own box. The body is cut by this box: the mesh is
+  // the boundary of {F > 0} inside it, closed along the box faces where the body reaches them.
+  Eigen::AlignedBox3d box;
+  int resolution = 128; // cells along the box's longest side (grid_with_resolution) ...
+  double cell = 0;      // ... unless a cell size h > 0 is given (grid_with_cell)
+  // Sub-boxes along x, y, z (each >= 1, at most the cells on that axis); 0 on an axis: automatic,
+  // at most 64 cells per sub-box along it.
+  Eigen::Array3i subboxes = Eigen::Array3i::Zero();
+  int threads = 0;     // worker threads; 0: all cores
+  bool project = true; // refine every vertex onto F = 0 along its grid edge (else linear)
+  RootOptions root;    // tolerance of the projection (relative to the cell size)
+  // Progress messages (stage starts and every tenth of the sub-boxes); called under a lock, from
+  // worker threads too.
+  std::function<void(const std::string&)> progress;
+};
+
+struct ImplicitMeshInfo {
+  RegularGrid grid;
+  Eigen::Array3i subboxes = Eigen::Array3i::Ones();
+  long samples = 0; // function values sampled (nodes on shared planes count twice)
+  long projection_evaluations = 0;
+  long nonfinite = 0; // sampled values that were NaN or infinite (treated as outside,
+                      // +inf as inside)
+  long clipped = 0;   // inside nodes on the grid's outer layer: the body reaches the box
+  double seconds_extract = 0, seconds_merge = 0, seconds_project = 0; // wall clock
+};
+
+// Meshes the body {F > 0} (within the box).
+// Steps: grid over the box (cells from o.resolution or o.cell); the nodes of each sub-box sampled
+// in batches of one z-slice and triangulated by marching cubes (all sub-boxes in parallel); the
+// sub-box meshes merged, each vertex on a shared plane kept once (its grid edge identifies it,
+// and both copies are bit-identical); every vertex moved onto F = 0 along its grid edge
+// (project_edge_vertices). The function actually meshed is min(F, B) with B the signed distance
+// to the box, and nodes of the grid's outer layer are never inside, so the result is closed.
+// Guarantees: closed, 2-manifold, consistently oriented (normals out of the body), no repeated
+// vertex in a triangle and no two vertices at one point where F = 0 at grid nodes (kEdgeClamp);
+// the same mesh, up to vertex order, for any sub-box count and any thread count. Not guaranteed:
+// that features thinner than a cell are seen, or good triangle shapes (marching cubes cuts
+// slivers where the surface passes near a node: see smooth_on_surface and flip_edges).
+// f must give the same value for the same point in any batch (nodes on shared planes are sampled
+// by both sub-boxes).
+// Inputs:
+//   f  implicit function (value; gradient unused)
+//   o  options; std::invalid_argument for no box, bad resolution/cell/sub-boxes
+// Outputs:
+//   V     #V by 3 vertices
+//   F     #F by 3 triangles
+//   info  optional statistics
+void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eigen::MatrixXd& V,
+                   Eigen::MatrixXi& F, ImplicitMeshInfo* info = nullptr);
+
+// The function implicit_mesh meshes: min(F, B) with B the signed distance to `box` (positive
+// inside); its box is `box`.
+ImplicitFunction clip_to_box(const ImplicitFunction& f, const Eigen::AlignedBox3d& box);
+
+} // namespace interlin

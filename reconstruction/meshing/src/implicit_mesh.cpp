@@ -1,0 +1,192 @@
+#include "interlin/reconstruction/meshing/implicit_mesh.h"
+
+#include "iso_block.h"
+#include "parallel.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace interlin {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Signed distance to the box's face planes, the nearest one: positive inside.
+double box_value(const Eigen::Ref<const Eigen::RowVector3d>& p, const Eigen::AlignedBox3d& box) {
+  double b = std::min(p(0) - box.min()(0), box.max()(0) - p(0));
+  b = std::min(b, std::min(p(1) - box.min()(1), box.max()(1) - p(1)));
+  return std::min(b, std::min(p(2) - box.min()(2), box.max()(2) - p(2)));
+}
+
+// min(v, b) keeping NaN (outside either way).
+double clip(double v, double b) {
+  return v > b ? b : v;
+}
+
+} // namespace
+
+ImplicitFunction clip_to_box(const ImplicitFunction& f, const Eigen::AlignedBox3d& box) {
+  if (!f.value)
+    throw std::invalid_argument("clip_to_box: the implicit function has no value");
+  ImplicitFunction g;
+  g.box = box;
+  g.value = [f, box](const Eigen::Ref<const Points3>& P, Eigen::Ref<Eigen::VectorXd> F) {
+    f.value(P, F);
+    for (Eigen::Index r = 0; r < P.rows(); ++r)
+      F(r) = clip(F(r), box_value(P.row(r), box));
+  };
+  if (f.gradient)
+    g.gradient = [f, box](const Eigen::Ref<const Points3>& P, Eigen::Ref<Eigen::VectorXd> F,
+                          Eigen::Ref<Points3> G) {
+      f.gradient(P, F, G);
+      for (Eigen::Index r = 0; r < P.rows(); ++r) {
+        const double b = box_value(P.row(r), box);
+        if (!(F(r) > b))
+          continue;
+        F(r) = b;
+        G.row(r).setZero(); // the gradient of the nearest face plane
+        for (int a = 0; a < 3; ++a) {
+          if (P(r, a) - box.min()(a) == b)
+            G(r, a) = 1;
+          else if (box.max()(a) - P(r, a) == b)
+            G(r, a) = -1;
+          else
+            continue;
+          break;
+        }
+      }
+    };
+  return g;
+}
+
+void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eigen::MatrixXd& V,
+                   Eigen::MatrixXi& F, ImplicitMeshInfo* info) {
+  if (!f.value)
+    throw std::invalid_argument("implicit_mesh: the implicit function has no value");
+  const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
+  if (box.isEmpty())
+    throw std::invalid_argument("implicit_mesh: no box (neither given nor the function's)");
+  const RegularGrid grid =
+      o.cell > 0 ? grid_with_cell(box, o.cell) : grid_with_resolution(box, o.resolution);
+  const Eigen::Array3i cells = grid.nodes - 1;
+  Eigen::Array3i k;
+  for (int a = 0; a < 3; ++a) {
+    k(a) = o.subboxes(a) > 0 ? o.subboxes(a) : (cells(a) + 63) / 64;
+    if (o.subboxes(a) < 0 || k(a) > cells(a))
+      throw std::invalid_argument("implicit_mesh: " + std::to_string(o.subboxes(a)) +
+                                  " sub-boxes along axis " + std::to_string(a) + " for " +
+                                  std::to_string(cells(a)) + " cells");
+  }
+  const int workers = detail::resolve_threads(o.threads);
+  std::mutex progress_mutex;
+  auto say = [&](const std::string& m) {
+    if (o.progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      o.progress(m);
+    }
+  };
+  ImplicitMeshInfo local;
+  ImplicitMeshInfo& out = info ? *info : local;
+  out = ImplicitMeshInfo{};
+  out.grid = grid;
+  out.subboxes = k;
+
+  const long blocks_total = long(k(0)) * k(1) * k(2);
+  say("grid " + std::to_string(grid.nodes(0)) + " x " + std::to_string(grid.nodes(1)) + " x " +
+      std::to_string(grid.nodes(2)) + " nodes (cell " + std::to_string(grid.spacing(0)) + "), " +
+      std::to_string(blocks_total) + " sub-boxes on " + std::to_string(workers) + " threads");
+  std::vector<detail::BlockMesh> blocks(static_cast<size_t>(blocks_total));
+  std::atomic<long> samples{0}, nonfinite{0}, clipped{0}, done{0};
+  struct Scratch {
+    std::vector<double> values;
+    Points3 P;
+  };
+  std::vector<Scratch> scratch(static_cast<size_t>(workers));
+  auto t0 = Clock::now();
+  detail::parallel_for(blocks_total, workers, [&](long b, int w) {
+    const int bx = int(b % k(0)), by = int((b / k(0)) % k(1)), bz = int(b / (long(k(0)) * k(1)));
+    const int bi[3] = {bx, by, bz};
+    Eigen::Array3i lo, n;
+    for (int a = 0; a < 3; ++a) {
+      const int c0 = int(long(cells(a)) * bi[a] / k(a)),
+                c1 = int(long(cells(a)) * (bi[a] + 1) / k(a));
+      lo(a) = c0;
+      n(a) = c1 - c0 + 1;
+    }
+    Scratch& s = scratch[size_t(w)];
+    const long slice = long(n(0)) * n(1);
+    s.values.resize(size_t(slice * n(2)));
+    s.P.resize(slice, 3);
+    long bad = 0, cut = 0;
+    for (int kk = 0; kk < n(2); ++kk) {
+      for (int j = 0, r = 0; j < n(1); ++j)
+        for (int i = 0; i < n(0); ++i, ++r)
+          s.P.row(r) = grid.point(lo(0) + i, lo(1) + j, lo(2) + kk).transpose();
+      Eigen::Map<Eigen::VectorXd> vals(s.values.data() + slice * kk, slice);
+      f.value(s.P, vals);
+      const long gk = lo(2) + kk;
+      for (int j = 0, r = 0; j < n(1); ++j)
+        for (int i = 0; i < n(0); ++i, ++r) {
+          double& v = vals(r);
+          bad += !std::isfinite(v);
+          const long gi = lo(0) + i, gj = lo(1) + j;
+          const bool outer = gi == 0 || gj == 0 || gk == 0 || gi == grid.nodes(0) - 1 ||
+                             gj == grid.nodes(1) - 1 || gk == grid.nodes(2) - 1;
+          if (outer && v > 0) {
+            ++cut;
+            v = 0; // never inside: the surface closes along the box
+          }
+          v = clip(v, box_value(s.P.row(r), box));
+        }
+    }
+    detail::extract_block(grid, s.values.data(), n(0), slice, lo, n, true, blocks[size_t(b)]);
+    samples += slice * n(2);
+    nonfinite += bad;
+    clipped += cut;
+    const long d = ++done;
+    if (blocks_total >= 10 && (d * 10) / blocks_total != ((d - 1) * 10) / blocks_total)
+      say("sampled and triangulated " + std::to_string(d) + " of " + std::to_string(blocks_total) +
+          " sub-boxes");
+  });
+  out.seconds_extract = seconds_since(t0);
+  out.samples = samples;
+  out.nonfinite = nonfinite;
+  out.clipped = clipped;
+
+  t0 = Clock::now();
+  std::vector<EdgeVertex> E;
+  detail::merge_blocks(blocks, V, F, &E, workers);
+  blocks.clear();
+  blocks.shrink_to_fit();
+  out.seconds_merge = seconds_since(t0);
+  say("merged: " + std::to_string(V.rows()) + " vertices, " + std::to_string(F.rows()) +
+      " triangles");
+
+  if (o.project && V.rows() > 0) {
+    t0 = Clock::now();
+    say("projecting the vertices onto F = 0");
+    const ImplicitFunction clipped_f = clip_to_box(f, box);
+    std::atomic<long> evaluations{0};
+    ImplicitFunction counted;
+    counted.value = [&](const Eigen::Ref<const Points3>& P, Eigen::Ref<Eigen::VectorXd> Fv) {
+      evaluations += long(P.rows());
+      clipped_f.value(P, Fv);
+    };
+    RootOptions ro = o.root;
+    ro.threads = o.threads;
+    project_edge_vertices(counted, grid, E, V, ro);
+    out.projection_evaluations = evaluations;
+    out.seconds_project = seconds_since(t0);
+  }
+}
+
+} // namespace interlin
