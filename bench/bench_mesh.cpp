@@ -4,8 +4,8 @@
 
 #include "bench_data.h"
 
-#include "interlin/reconstruction/loft/loft.h"
 #include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/loft/loft.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
 
 #include <benchmark/benchmark.h>

@@ -15,9 +15,9 @@
 
 #include "occt_loft.h"
 
-#include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/reconstruction/io/iges.h"
 #include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/splines/bspline_surface.h"
 
 #include <Eigen/Cholesky>

@@ -5,12 +5,12 @@
 #include "commands.h"
 
 #include "interlin/interflatation/rfunctions/model.h"
-#include "interlin/reconstruction/meshing/edge_flips.h"
-#include "interlin/reconstruction/meshing/implicit_mesh.h"
 #include "interlin/reconstruction/io/input_error.h"
-#include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/io/mesh_io.h"
 #include "interlin/reconstruction/io/preview.h"
+#include "interlin/reconstruction/meshing/edge_flips.h"
+#include "interlin/reconstruction/meshing/implicit_mesh.h"
+#include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
 
 #include <algorithm>

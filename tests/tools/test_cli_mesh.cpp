@@ -1,7 +1,7 @@
 // interlin mesh as a user meets it: a model file in, a closed mesh and a preview out, the
 // summary, and one clear error line with the right exit status for every kind of bad input.
-#include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/meshing/mesh_check.h"
 
 #include "support/cli_runner.h"
 #include "support/test_support.h"

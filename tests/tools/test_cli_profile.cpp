@@ -1,7 +1,7 @@
 // interlin profile: cascade parameters (seed 004 §4.1–4.2) -> section CSV, the span stack lofted
 // end to end, and one clear error line with no output file for bad input.
-#include "interlin/reconstruction/loft/loft.h"
 #include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/loft/loft.h"
 #include "interlin/splines/cascade_stack.h"
 
 #include "support/cli_runner.h"

@@ -5,11 +5,11 @@
 
 #include "interlin/interflatation/rfunctions/model_expression.h"
 
+#include "interlin/interflatation/input_error.h"
 #include "interlin/interflatation/rfunctions/curve_distance.h"
 #include "interlin/interflatation/rfunctions/expression.h"
 #include "interlin/interflatation/rfunctions/folding.h"
 #include "interlin/interflatation/rfunctions/frame_blending.h"
-#include "interlin/interflatation/input_error.h"
 #include "interlin/interflatation/rfunctions/normalization.h"
 #include "interlin/interflatation/rfunctions/primitives.h"
 #include "interlin/interflatation/rfunctions/r_operations.h"

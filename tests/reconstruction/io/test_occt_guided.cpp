@@ -1,10 +1,10 @@
 // The guided loft's surface (Gordon surface of sections and edge lines) read back by
 // OpenCASCADE from our IGES: one B-spline face, and OCCT's projector confirms the hold-out
 // distances reported in docs/benchmarks.md.
-#include "interlin/reconstruction/loft/guided_loft.h"
-#include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/reconstruction/io/iges.h"
 #include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/loft/guided_loft.h"
+#include "interlin/reconstruction/loft/holdout.h"
 
 #include "support/test_sections.h"
 #include "support/test_support.h"

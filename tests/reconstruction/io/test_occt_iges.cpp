@@ -11,9 +11,9 @@
 // ~10 orders of magnitude below any real error (a wrong knot, index order or unit scale changes
 // the points by O(size)).
 
-#include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/reconstruction/io/iges.h"
 #include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/splines/bspline_curve.h"
 #include "interlin/splines/bspline_surface.h"
 #include "interlin/splines/knot_insertion.h"

@@ -1,6 +1,6 @@
 // The seed's cylindrical model x = R cos t, y = R sin t, z = z for star-shaped bodies.
-#include "interlin/reconstruction/loft/cylindrical_loft.h"
 #include "interlin/reconstruction/io/input_error.h"
+#include "interlin/reconstruction/loft/cylindrical_loft.h"
 
 #include "support/test_sections.h"
 #include "support/test_support.h"

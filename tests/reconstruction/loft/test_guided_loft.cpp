@@ -1,11 +1,11 @@
 // Guided loft (Gordon surface through sections and guide lines): exact on both families, the
 // crossings made compatible by the library, better spanwise accuracy where guides carry data.
-#include "interlin/reconstruction/loft/closest_point.h"
-#include "interlin/reconstruction/loft/guided_loft.h"
-#include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/reconstruction/io/iges.h"
 #include "interlin/reconstruction/io/input_error.h"
 #include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/loft/closest_point.h"
+#include "interlin/reconstruction/loft/guided_loft.h"
+#include "interlin/reconstruction/loft/holdout.h"
 
 #include "support/test_sections.h"
 #include "support/test_support.h"

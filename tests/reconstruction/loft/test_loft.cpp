@@ -1,8 +1,8 @@
 // The loft: exact on every input section, correct correspondence, spanwise order of accuracy.
+#include "interlin/reconstruction/io/section_csv.h"
 #include "interlin/reconstruction/loft/closest_point.h"
 #include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/reconstruction/loft/loft.h"
-#include "interlin/reconstruction/io/section_csv.h"
 
 #include "support/test_sections.h"
 #include "support/test_support.h"

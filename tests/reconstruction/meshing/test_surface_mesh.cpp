@@ -1,5 +1,5 @@
-#include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
 #include "interlin/splines/bspline_curve.h"
 #include "interlin/splines/bspline_surface.h"
