@@ -7,6 +7,24 @@
 
 namespace interlin {
 
+LineReader::LineReader(std::string_view text) : text_(text) {
+  if (text_.substr(0, 3) == "\xEF\xBB\xBF")
+    text_.remove_prefix(3);
+}
+
+bool LineReader::next(std::string_view& line) {
+  if (pos_ >= text_.size())
+    return false;
+  const std::size_t e = text_.find('\n', pos_);
+  const std::size_t stop = e == std::string_view::npos ? text_.size() : e;
+  line = text_.substr(pos_, stop - pos_);
+  if (!line.empty() && line.back() == '\r')
+    line.remove_suffix(1);
+  pos_ = e == std::string_view::npos ? text_.size() : e + 1;
+  ++number_;
+  return true;
+}
+
 bool is_blank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }

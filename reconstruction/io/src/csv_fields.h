@@ -1,12 +1,28 @@
 #pragma once
-// Fields of the section, guide and points readers: ASCII lower case for header names, and the
-// strict number and integer rules with their error messages (docs/formats.md, "Section files").
+// Lines and fields of the section, guide and points readers: line iteration, ASCII lower case
+// for header names, and the strict number and integer rules with their error messages
+// (docs/formats.md, "Section files").
 
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace interlin {
+
+// Iterates over the lines of a buffer: strips a UTF-8 BOM and the '\r' of CRLF endings.
+class LineReader {
+public:
+  explicit LineReader(std::string_view text);
+  // The next line into `line`; false at the end of the text.
+  bool next(std::string_view& line);
+  // The 1-based number of the line last returned.
+  long number() const { return number_; }
+
+private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  long number_ = 0;
+};
 
 // Space, \t, \r, \v or \f: what trim removes and what separates plain-format fields.
 bool is_blank(char c);

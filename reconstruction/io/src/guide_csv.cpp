@@ -3,13 +3,12 @@
 
 #include "csv_fields.h"
 
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/input_error.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <map>
+#include <sstream>
 #include <string_view>
 
 namespace interlin {
@@ -28,8 +27,11 @@ struct Row {
 GuideSet parse_guides(std::istream& in, const std::string& path) {
   GuideSet set;
   set.path = path;
-  std::string text;
-  long lineno = 0;
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  LineReader lines(text);
+  string_view line;
   bool header = false;
   int col_guide = -1, col_index = -1, col_xyz[3] = {-1, -1, -1};
   size_t nfields = 0;
@@ -38,11 +40,8 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
   std::map<std::string, long> last_line;        // last row of each guide (contiguity check)
   std::string previous;
   std::vector<string_view> f; // the fields of the current line
-  while (std::getline(in, text)) {
-    ++lineno;
-    string_view line(text);
-    if (lineno == 1 && line.substr(0, 3) == "\xEF\xBB\xBF")
-      line.remove_prefix(3);
+  while (lines.next(line)) {
+    const long lineno = lines.number();
     const string_view t = trim(line);
     if (t.empty() || t.front() == '#')
       continue;
@@ -140,9 +139,7 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
 }
 
 GuideSet read_guides(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
+  std::istringstream in(read_input_file(path));
   return parse_guides(in, path);
 }
 

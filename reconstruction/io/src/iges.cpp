@@ -1,5 +1,6 @@
 #include "interlin/reconstruction/io/iges.h"
 
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/atomic_file.h"
 #include "interlin/reconstruction/io/input_error.h"
 
@@ -14,7 +15,6 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -28,7 +28,6 @@ namespace {
 // Directory Entry pointer), column 73 section letter, 74-80 sequence number.
 constexpr std::size_t kDataColumns = 72;
 constexpr std::size_t kParamColumns = 64;
-constexpr std::size_t kLineColumns = 80;
 constexpr std::size_t kMaxString = 64; // a Hollerith string of the Global section fits one line
 constexpr long kMaxSequence = 9999999; // seven digits
 
@@ -221,17 +220,16 @@ bool parse_real(std::string_view text, double& out) {
   return res.ec == std::errc() && res.ptr == t.data() + t.size() && std::isfinite(out);
 }
 
-IgesFile load(const std::string& path) {
+IgesFile load(std::string_view text, const std::string& path) {
   IgesFile f;
   f.path = path;
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path, 0, "cannot open file");
-  std::string text;
-  while (std::getline(in, text)) {
-    if (!text.empty() && text.back() == '\r')
-      text.pop_back();
-    f.lines.push_back(text);
+  while (!text.empty()) {
+    const std::size_t e = std::min(text.find('\n'), text.size());
+    std::string_view l = text.substr(0, e);
+    if (!l.empty() && l.back() == '\r')
+      l.remove_suffix(1);
+    f.lines.emplace_back(l);
+    text.remove_prefix(std::min(e + 1, text.size()));
   }
   if (f.lines.empty())
     throw_input_error(path, 0, "empty file");
@@ -578,7 +576,11 @@ void write_iges(const std::string& path, const BSplineSurface& s, const IgesOpti
 }
 
 BSplineSurface read_iges_surface(const std::string& path) {
-  const IgesFile f = load(path);
+  return parse_iges_surface(read_input_file(path), path);
+}
+
+BSplineSurface parse_iges_surface(std::string_view text, const std::string& path) {
+  const IgesFile f = load(text, path);
 
   DirectoryEntry e;
   bool found = false;

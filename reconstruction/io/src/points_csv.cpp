@@ -2,33 +2,29 @@
 
 #include "csv_fields.h"
 
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/input_error.h"
 
 #include <array>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <string_view>
 #include <vector>
 
 namespace interlin {
 
 Eigen::MatrixX3d read_points_csv(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::string text;
-  long number = 0;
+  return parse_points_csv(read_input_file(path), path);
+}
+
+Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path) {
+  LineReader lines(text);
+  std::string_view line;
   std::array<int, 3> col{-1, -1, -1};
   std::size_t fields = 0;
   long header_line = 0;
   std::vector<std::array<double, 3>> rows;
   std::vector<std::string_view> f; // the fields of the current line
-  while (std::getline(in, text)) {
-    ++number;
-    std::string_view line = text;
-    if (number == 1 && line.substr(0, 3) == "\xEF\xBB\xBF")
-      line.remove_prefix(3);
+  while (lines.next(line)) {
+    const long number = lines.number();
     const std::string_view t = trim(line);
     if (t.empty() || t.front() == '#')
       continue;
@@ -70,8 +66,6 @@ Eigen::MatrixX3d read_points_csv(const std::string& path) {
     }
     rows.push_back(p);
   }
-  if (in.bad())
-    throw_input_error(path, 0, std::string("cannot read: ") + std::strerror(errno));
   if (header_line == 0)
     throw_input_error(path, 0,
                       "no header: the file is empty or holds only comments and blank lines");

@@ -2,17 +2,14 @@
 
 #include "csv_fields.h"
 
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/atomic_file.h"
 #include "interlin/reconstruction/io/input_error.h"
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <cstring>
 #include <istream>
-#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -52,33 +49,6 @@ void split_plain(string_view line, std::vector<string_view>& out) {
     line.remove_prefix(c + 1);
   }
 }
-
-// Iterates over the lines of a buffer: strips a UTF-8 BOM and the '\r' of CRLF endings.
-class LineReader {
-public:
-  explicit LineReader(string_view text) : text_(text) {
-    if (text_.substr(0, 3) == "\xEF\xBB\xBF")
-      text_.remove_prefix(3);
-  }
-  bool next(string_view& line) {
-    if (pos_ >= text_.size())
-      return false;
-    const size_t e = text_.find('\n', pos_);
-    const size_t stop = e == string_view::npos ? text_.size() : e;
-    line = text_.substr(pos_, stop - pos_);
-    if (!line.empty() && line.back() == '\r')
-      line.remove_suffix(1);
-    pos_ = e == string_view::npos ? text_.size() : e + 1;
-    ++number_;
-    return true;
-  }
-  long number() const { return number_; }
-
-private:
-  string_view text_;
-  size_t pos_ = 0;
-  long number_ = 0;
-};
 
 bool is_comment(string_view trimmed) {
   return !trimmed.empty() && trimmed.front() == '#';
@@ -411,21 +381,7 @@ SectionSet parse_sections(std::istream& in, const std::string& path_for_messages
 }
 
 SectionSet read_sections(const std::string& path) {
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"),
-                                                          &std::fclose);
-  if (!f)
-    throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::string text;
-  char buf[1 << 16];
-  for (;;) {
-    const size_t n = std::fread(buf, 1, sizeof buf, f.get());
-    text.append(buf, n);
-    if (n < sizeof buf)
-      break;
-  }
-  if (std::ferror(f.get()))
-    throw_input_error(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  return Parser(path).parse(text);
+  return Parser(path).parse(read_input_file(path));
 }
 
 void write_sections_csv(const std::string& path, const std::vector<Section>& sections) {

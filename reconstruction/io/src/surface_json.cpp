@@ -1,5 +1,6 @@
 #include "interlin/reconstruction/io/surface_json.h"
 
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/atomic_file.h"
 #include "interlin/reconstruction/io/input_error.h"
 
@@ -10,8 +11,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -34,7 +33,7 @@ std::string number(double x) {
 }
 
 // 1-based line of byte offset `end` in `content`.
-long line_at(const std::string& content, std::size_t end) {
+long line_at(std::string_view content, std::size_t end) {
   end = std::min(end, content.size());
   return 1 + static_cast<long>(std::count(
                  content.begin(), content.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
@@ -137,13 +136,14 @@ void write_surface_json(const std::string& path, const BSplineSurface& s,
 
 BSplineSurface read_surface_json(const std::string& path,
                                  std::map<std::string, std::string>* meta) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw_input_error(path, 0, "cannot open file");
-  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_surface_json(read_input_file(path), path, meta);
+}
+
+BSplineSurface parse_surface_json(std::string_view content, const std::string& path,
+                                  std::map<std::string, std::string>* meta) {
   json root;
   try {
-    root = json::parse(content);
+    root = json::parse(content.begin(), content.end());
   } catch (const json::parse_error& e) {
     // e.byte: 1-based index of the last character read.
     const std::string what = e.what();

@@ -5,6 +5,7 @@
 #include "interlin/splines/bspline_surface.h"
 
 #include <string>
+#include <string_view>
 
 namespace interlin {
 
@@ -44,5 +45,8 @@ void write_iges(const std::string& path, const BSplineSurface& s, const IgesOpti
 // Throws InputError("PATH:LINE: message") for unreadable, truncated or malformed files,
 // unsupported surfaces, or a missing entity 128.
 BSplineSurface read_iges_surface(const std::string& path);
+
+// Same as read_iges_surface, from the file's content `text`; `path` names it in messages.
+BSplineSurface parse_iges_surface(std::string_view text, const std::string& path);
 
 } // namespace interlin

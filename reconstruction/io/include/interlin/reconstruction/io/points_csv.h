@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <string_view>
 
 namespace interlin {
 
@@ -15,5 +16,8 @@ namespace interlin {
 // header or column, a repeated column, a row with another field count than the header, a field
 // that is not a finite number, and a file without points.
 Eigen::MatrixX3d read_points_csv(const std::string& path);
+
+// Same as read_points_csv, from the file's content `text`; `path` names it in messages.
+Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path);
 
 } // namespace interlin

@@ -11,6 +11,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 
 namespace interlin {
 
@@ -37,5 +38,9 @@ void write_surface_json(const std::string& path, const BSplineSurface& s,
 // naming the field") on any other problem.
 BSplineSurface read_surface_json(const std::string& path,
                                  std::map<std::string, std::string>* meta = nullptr);
+
+// Same as read_surface_json, from the file's content; `path` names it in messages.
+BSplineSurface parse_surface_json(std::string_view content, const std::string& path,
+                                  std::map<std::string, std::string>* meta = nullptr);
 
 } // namespace interlin
