@@ -84,7 +84,32 @@ double fold_value(Op op, double a, double b, double k) {
 
 namespace {
 
+thread_local NodeBudget* current_budget = nullptr;
+
+} // namespace
+
+NodeBudget::NodeBudget(long long limit) : limit_(limit), outer_(current_budget) {
+  current_budget = this;
+}
+
+NodeBudget::~NodeBudget() {
+  current_budget = outer_;
+}
+
+void NodeBudget::charge(long long units) {
+  NodeBudget* b = current_budget;
+  if (!b || (b->used_ += units) <= b->limit_)
+    return;
+  throw LimitError("the model expands to more expression nodes and function calls than the "
+                   "limit of " +
+                       std::to_string(b->limit_),
+                   "max-model-size");
+}
+
+namespace {
+
 NodePtr leaf(Op op, double k = 0) {
+  NodeBudget::charge();
   auto n = std::make_shared<Node>();
   n->op = op;
   n->k = k;
@@ -161,6 +186,7 @@ NodePtr make(Op op, NodePtr a, NodePtr b, double k, std::shared_ptr<const Polyli
   default:
     break;
   }
+  NodeBudget::charge();
   auto n = std::make_shared<Node>();
   n->op = op;
   n->k = k;

@@ -15,7 +15,9 @@
 #include "interlin/interflatation/rfunctions/r_operations.h"
 #include "interlin/interflatation/rfunctions/transforms.h"
 
+#include "large_stack.h"
 #include "model_parser.h"
+#include "node.h"
 
 #include <algorithm>
 #include <cmath>
@@ -302,6 +304,7 @@ public:
   }
 
   ModelExpression run(const std::vector<Statement>& program) {
+    const rf::detail::NodeBudget budget(options_.max_size);
     for (const Statement& st : program)
       execute(st);
     for (const auto& [name, value] : options_.parameters)
@@ -329,6 +332,10 @@ private:
       execute_checked(st);
     } catch (const std::invalid_argument& e) { // e.g. an expression nested too deeply
       fail(st.pos, e.what());
+    } catch (const LimitError& e) { // the model-size budget: named with the statement
+      throw LimitError(file_ + ":" + std::to_string(st.pos.line) + ":" +
+                           std::to_string(st.pos.column) + ": " + e.what(),
+                       e.option);
     }
   }
 
@@ -400,8 +407,10 @@ private:
   }
 
   Value eval(const Ast& a, const Scope& scope, const Defs& defs, int depth) const {
-    if (depth > 200)
-      fail(a.pos, "function calls nested too deeply");
+    if (depth > limits::call_depth)
+      fail(a.pos, "function calls nested too deeply (more than " +
+                      std::to_string(limits::call_depth) + " levels; a fixed limit)");
+    rf::detail::NodeBudget::charge(); // expanding calls can take exponential work: count it
     switch (a.kind) {
     case Ast::Kind::number:
       return {a.number};
@@ -517,7 +526,8 @@ private:
 
 ModelExpression parse_model_expression(const std::string& text, const std::string& name,
                                        const ModelOptions& options) {
-  return Evaluator(name, options).run(rf::detail::parse_model_text(text, name));
+  return rf::detail::on_large_stack(
+      [&] { return Evaluator(name, options).run(rf::detail::parse_model_text(text, name)); });
 }
 
 ModelExpression load_model_expression(const std::string& path, const ModelOptions& options) {
@@ -526,13 +536,15 @@ ModelExpression load_model_expression(const std::string& path, const ModelOption
 
 ImplicitFunction parse_model(const std::string& text, const std::string& name,
                              const ModelOptions& options) {
-  const ModelExpression m = parse_model_expression(text, name, options);
-  return rf::compile(m.F, m.box);
+  return rf::detail::on_large_stack([&] { // the expression is also destroyed on that stack
+    const ModelExpression m =
+        Evaluator(name, options).run(rf::detail::parse_model_text(text, name));
+    return rf::compile(m.F, m.box);
+  });
 }
 
 ImplicitFunction load_model(const std::string& path, const ModelOptions& options) {
-  const ModelExpression m = load_model_expression(path, options);
-  return rf::compile(m.F, m.box);
+  return parse_model(read_input_file(path), path, options);
 }
 
 } // namespace interlin

@@ -2,7 +2,9 @@
 #include "model_parser.h"
 
 #include "interlin/interflatation/input_error.h"
+#include "interlin/interflatation/limits.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -15,8 +17,6 @@ void throw_at(const std::string& file, Pos pos, const std::string& message) {
 }
 
 namespace {
-
-constexpr int kMaxDepth = 500; // nesting of parentheses and calls
 
 struct Token {
   enum class Kind { number, ident, symbol, end };
@@ -233,23 +233,31 @@ private:
   }
 
   void check_depth(int depth) const {
-    if (depth > kMaxDepth)
-      fail(peek(),
-           "expression nested too deeply (more than " + std::to_string(kMaxDepth) + " levels)");
+    if (depth > limits::model_nesting)
+      fail(peek(), "expression nested too deeply (more than " +
+                       std::to_string(limits::model_nesting) + " levels; a fixed limit)");
   }
 
   // The node of the operator token `op` over its operand(s): unary with one, binary with two.
-  static Ast apply(const Token& op, Ast a) {
+  // A chain such as a sum of many terms grows the tree's height without nesting: it is limited
+  // like the expressions it becomes (the passes over both recurse along it).
+  Ast apply(const Token& op, Ast a) const {
     Ast n;
     n.kind = Ast::Kind::unary;
     n.pos = op.pos;
     n.op = op.text[0];
+    n.height = a.height + 1;
     n.args.push_back(std::move(a));
+    if (n.height > limits::expression_depth)
+      fail(op, "expression too long: more than " + std::to_string(limits::expression_depth) +
+                   " chained operations (a fixed limit)");
     return n;
   }
-  static Ast apply(const Token& op, Ast a, Ast b) {
+  Ast apply(const Token& op, Ast a, Ast b) const {
+    const int hb = b.height;
     Ast n = apply(op, std::move(a));
     n.kind = Ast::Kind::binary;
+    n.height = std::max(n.height, hb + 1);
     n.args.push_back(std::move(b));
     return n;
   }
@@ -319,6 +327,7 @@ private:
       next();
       a.kind = Ast::Kind::call;
       a.args = list(")", "or ')' between the arguments of " + a.name + "(...)", depth);
+      a.height = 1 + max_height(a.args);
       return a;
     }
     if (is_symbol("(")) {
@@ -332,9 +341,16 @@ private:
       next();
       a.kind = Ast::Kind::list;
       a.args = list("]", "or ']' in the list", depth);
+      a.height = 1 + max_height(a.args);
       return a;
     }
     fail(t, "expected a number, a name, '(' or '[', found " + describe(t));
+  }
+  static int max_height(const std::vector<Ast>& items) {
+    int h = 0;
+    for (const Ast& item : items)
+      h = std::max(h, item.height);
+    return h;
   }
   // [ expr { , expr } ] close: the items of a call or a list, after its opening symbol.
   std::vector<Ast> list(const char* close, const std::string& between, int depth) {

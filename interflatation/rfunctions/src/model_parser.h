@@ -19,6 +19,7 @@ struct Ast {
   double number = 0;
   std::string name; // variable or function name
   char op = 0;      // + - * / ^ for unary and binary
+  int height = 1;   // nodes on the longest path down to a leaf (the recursion depth of passes)
   std::vector<Ast> args;
 };
 

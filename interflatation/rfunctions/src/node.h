@@ -2,6 +2,8 @@
 // Internal: the node of an R-function expression graph. Expressions are immutable trees of shared
 // nodes (a DAG once variables are reused); compile() hash-conses them into a program.
 
+#include "interlin/interflatation/limits.h"
+
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
@@ -68,9 +70,9 @@ struct Polyline {
   double signed_distance(double u, double v, double* du = nullptr, double* dv = nullptr) const;
 };
 
-// The longest operand chain an expression may have: the graph passes (differentiation,
-// substitution, compilation, destruction) recurse along it.
-inline constexpr int kMaxDepth = 20000;
+// The longest operand chain an expression may have (limits::expression_depth): the graph
+// passes (differentiation, substitution, compilation, destruction) recurse along it.
+inline constexpr int kMaxDepth = limits::expression_depth;
 
 struct Node {
   Op op;
@@ -84,6 +86,24 @@ using NodePtr = std::shared_ptr<const Node>;
 
 int arity(Op op);
 const char* op_name(Op op);
+
+// A budget of work while it is alive on its thread: every node make() builds and every unit
+// charged by hand (the model evaluator charges each function call it expands) counts one;
+// past `limit` units a LimitError is thrown (limits::model_size). Budgets nest: the innermost
+// one counts. Without a budget nothing is counted.
+class NodeBudget {
+public:
+  explicit NodeBudget(long long limit);
+  ~NodeBudget();
+  NodeBudget(const NodeBudget&) = delete;
+  NodeBudget& operator=(const NodeBudget&) = delete;
+  // Charges `units` to the current thread's budget, if any.
+  static void charge(long long units = 1);
+
+private:
+  long long limit_, used_ = 0;
+  NodeBudget* outer_;
+};
 
 // The one constructor of operation nodes: folds constants and drops identities (x + 0, x * 1, ...).
 NodePtr make(Op op, NodePtr a, NodePtr b = nullptr, double k = 0,

@@ -106,6 +106,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
       std::to_string(blocks_total) + " sub-boxes on " + std::to_string(workers) + " threads");
   std::vector<detail::BlockMesh> blocks(static_cast<size_t>(blocks_total));
   std::atomic<long> samples{0}, nonfinite{0}, clipped{0}, done{0};
+  std::atomic<long long> triangles{0};
   struct Scratch {
     std::vector<double> values;
     Points3 P;
@@ -149,6 +150,10 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
         }
     }
     detail::extract_block(grid, s.values.data(), n(0), slice, lo, n, true, blocks[size_t(b)]);
+    if ((triangles += long(blocks[size_t(b)].F.size() / 3)) > o.max_triangles)
+      throw LimitError("the mesh has more triangles than the limit of " +
+                           std::to_string(o.max_triangles),
+                       "max-triangles");
     samples += slice * n(2);
     nonfinite += bad;
     clipped += cut;

@@ -4,6 +4,7 @@
 // described in docs/formats.md, section "R-function model files"; data/models/ holds examples.
 
 #include "interlin/interflatation/implicit_function.h"
+#include "interlin/interflatation/limits.h"
 
 #include <map>
 #include <string>
@@ -16,6 +17,9 @@ struct ModelOptions {
   // Values that replace the defaults of the model's `param NAME = value;` declarations. Naming a
   // parameter the model does not declare is an InputError.
   std::map<std::string, double> parameters;
+  // Work allowed while reading the model: expression nodes built plus user-function calls
+  // expanded (limits::model_size). Past it reading stops with a LimitError naming the statement.
+  long long max_size = limits::model_size;
 };
 
 // Reads and compiles the model file at `path`.
@@ -28,7 +32,8 @@ struct ModelOptions {
 // outputs, and copies share the program.
 // Throws InputError("FILE:LINE:COLUMN: message") for syntax and semantic errors (LINE and
 // COLUMN count from 1, COLUMN in bytes), InputError("FILE: message") for file-level problems
-// (unreadable file, no box, no output variable, unknown parameter override).
+// (unreadable file, no box, no output variable, unknown parameter override), LimitError
+// ("FILE:LINE:COLUMN: ...") when the model needs more than options.max_size.
 ImplicitFunction load_model(const std::string& path, const ModelOptions& options = {});
 
 // The same from text in memory; `name` stands for FILE in error messages.

@@ -16,7 +16,10 @@ struct ModelExpression {
   Eigen::AlignedBox3d box; // the declared box
 };
 
-// As load_model / parse_model (same errors), without compiling.
+// As load_model / parse_model (same errors), without compiling. The passes over an expression
+// recurse along its longest chain (up to limits::expression_depth): the caller's thread needs
+// a large stack for deep models, destroying the result included (load_model reads on a thread
+// of its own).
 ModelExpression load_model_expression(const std::string& path, const ModelOptions& options = {});
 ModelExpression parse_model_expression(const std::string& text, const std::string& name = "<model>",
                                        const ModelOptions& options = {});

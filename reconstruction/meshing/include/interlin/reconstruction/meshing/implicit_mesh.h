@@ -5,6 +5,7 @@
 // vertices on shared planes, and seed 003's projection of every vertex onto F = 0.
 
 #include "interlin/interflatation/implicit_function.h"
+#include "interlin/interflatation/limits.h"
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/regular_grid.h"
 
@@ -27,6 +28,9 @@ struct ImplicitMeshOptions {
   int threads = 0;     // worker threads; 0: all cores
   bool project = true; // refine every vertex onto F = 0 along its grid edge (else linear)
   RootOptions root;    // tolerance of the projection (relative to the cell size)
+  // Triangles allowed (limits::mesh_triangles): past it meshing stops with a LimitError, before
+  // the merge (a surface that folds in every cell would otherwise fill the memory).
+  long long max_triangles = limits::mesh_triangles;
   // Progress messages (stage starts and every tenth of the sub-boxes); called under a lock, from
   // worker threads too.
   std::function<void(const std::string&)> progress;
@@ -59,7 +63,8 @@ struct ImplicitMeshInfo {
 // by both sub-boxes).
 // Inputs:
 //   f  implicit function (value; gradient unused)
-//   o  options; std::invalid_argument for no box, bad resolution/cell/sub-boxes
+//   o  options; std::invalid_argument for no box, bad resolution/cell/sub-boxes, LimitError past
+//      o.max_triangles
 // Outputs:
 //   V     #V by 3 vertices
 //   F     #F by 3 triangles
