@@ -1,7 +1,13 @@
 #include "cli_common.h"
 
+#include "interlin/interflatation/limits.h"
+#include "interlin/reconstruction/io/atomic_file.h"
+
 #include <cctype>
+#include <cerrno>
+#include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -29,7 +35,10 @@ int run_command(const char* name, const char* help, int argc, const char* const*
   } catch (const std::exception& e) {
     for (const std::string& o : written)
       std::remove(o.c_str());
-    std::cerr << "interlin: " << e.what() << "\n";
+    std::cerr << "interlin: " << e.what();
+    if (const auto* limit = dynamic_cast<const LimitError*>(&e); limit && !limit->option.empty())
+      std::cerr << " (raise it with --" << limit->option << " N)";
+    std::cerr << "\n";
     return 1;
   }
 }
@@ -57,12 +66,74 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-void check_output_dir(const std::string& path) {
+namespace {
+
+// Throws "cannot write PATH: why" unless a file can be created at `path`.
+void check_writable(const std::string& path) {
   const fs::path dir =
       fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
+  const auto fail = [&](const std::string& why) {
+    throw std::runtime_error("cannot write " + path + ": " + why);
+  };
+  if (fs::exists(dir) && !fs::is_directory(dir))
+    fail(dir.string() + " is not a directory");
   if (!fs::is_directory(dir))
-    throw std::runtime_error("cannot write " + path + ": directory " + dir.string() +
-                             " does not exist");
+    fail("directory " + dir.string() + " does not exist");
+  if (fs::is_directory(path))
+    fail("it is a directory");
+  // Permissions do not tell (root, read-only mounts, /proc): create the writer's temporary file.
+  const AtomicPath probe(path);
+  std::FILE* f = std::fopen(probe.temp().c_str(), "wb");
+  if (!f)
+    fail(std::strerror(errno));
+  std::fclose(f);
+}
+
+// Whether `a` and `b` name the same file: the same file when both exist (hard and symbolic links
+// included), else the same path once made absolute and normal.
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec))
+    return fs::equivalent(a, b, ec);
+  const fs::path ca = fs::weakly_canonical(a, ec);
+  if (ec)
+    return a == b;
+  const fs::path cb = fs::weakly_canonical(b, ec);
+  return ec ? a == b : ca == cb;
+}
+
+} // namespace
+
+void check_outputs(const std::vector<std::string>& inputs,
+                   const std::vector<std::string>& outputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    for (size_t j = 0; j < i; ++j)
+      if (same_file(outputs[j], outputs[i]))
+        throw UsageError("output '" + outputs[i] + "' given twice");
+    for (const std::string& in : inputs)
+      if (same_file(in, outputs[i]))
+        throw UsageError("output '" + outputs[i] + "' is the input file '" + in +
+                         "' (it would be overwritten)");
+  }
+  for (const std::string& out : outputs)
+    check_writable(out);
+}
+
+long long limit_option(const ParsedArgs& args, const std::string& name, long long fallback) {
+  if (!args.has(name))
+    return fallback;
+  const std::string text = args.get(name);
+  long long v = 0;
+  const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || p != text.data() + text.size() || v < 1)
+    throw UsageError("--" + name + " expects a positive integer, got '" + text + "'");
+  return v;
+}
+
+void options_exceed(const std::string& option_and_value, const std::string& what, long long limit,
+                    const std::string& limit_name) {
+  throw UsageError(option_and_value + ": asks for " + what + ", more than the limit of " +
+                   std::to_string(limit) + " (raise it with --" + limit_name + " N)");
 }
 
 void print_written(const std::vector<std::string>& paths) {
@@ -83,6 +154,7 @@ std::string fmt(double x, int precision) {
 
 ModelOptions model_options(const ParsedArgs& args, SettingLabel label) {
   ModelOptions mo;
+  mo.max_size = limit_option(args, "max-model-size", limits::model_size);
   if (args.has("var"))
     mo.output = args.get("var");
   for (const std::string& s : args.all("set")) {

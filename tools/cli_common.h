@@ -5,6 +5,7 @@
 
 #include "cli_args.h"
 
+#include "interlin/interflatation/limits.h"
 #include "interlin/interflatation/rfunctions/model.h"
 
 #include <chrono>
@@ -20,7 +21,8 @@ using CommandBody = std::function<void(const ParsedArgs& args, std::vector<std::
 // Runs one subcommand: parses argv[2..] with `options` plus -q/--quiet and -h/--help, prints
 // `help` on -h, else calls `body`; returns the exit status. A UsageError prints the one line
 // "interlin NAME: what" and gives 2; any other exception removes the files listed in `written`
-// (a command's outputs come as a set), prints "interlin: what" and gives 1; otherwise 0.
+// (a command's outputs come as a set), prints "interlin: what" (a LimitError adds the option
+// that raises the limit) and gives 1; otherwise 0.
 int run_command(const char* name, const char* help, int argc, const char* const* argv,
                 std::vector<OptionSpec> options, const CommandBody& body);
 
@@ -38,9 +40,20 @@ std::string single_input(const ParsedArgs& args, const std::string& what);
 // The extension of `path` in lower case (".stl"), empty when it has none.
 std::string lower_extension(const std::string& path);
 
-// Throws std::runtime_error "cannot write PATH: directory DIR does not exist" unless the
-// directory `path` is to be written in exists (checked before any work).
-void check_output_dir(const std::string& path);
+// The checks of a command's output files before any work: UsageError when an output is given
+// twice or is one of the `inputs` (the same file under any spelling), std::runtime_error
+// "cannot write PATH: why" when an output cannot be created (missing directory, a directory in
+// its place, a parent that is a file, no permission or a read-only file system: a probe file is
+// created and removed beside it).
+void check_outputs(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs);
+
+// A value option that raises a limit (--max-NAME N, N >= 1), or `fallback` when absent.
+long long limit_option(const ParsedArgs& args, const std::string& name, long long fallback);
+
+// UsageError "--OPTION VALUE: asks for WHAT, more than the limit of LIMIT (raise it with
+// --max-NAME N)": a limit the options alone exceed, reported before any work.
+[[noreturn]] void options_exceed(const std::string& option_and_value, const std::string& what,
+                                 long long limit, const std::string& limit_name);
 
 // "  wrote        A, B" on stdout; nothing when `paths` is empty.
 void print_written(const std::vector<std::string>& paths);
@@ -52,8 +65,9 @@ std::string fmt(double x, int precision = 4);
 // the NAME alone (mesh).
 enum class SettingLabel { setting, name };
 
-// The model options of --var NAME and the repeatable --set NAME=VALUE. Throws UsageError for a
-// setting without '=' or name, a value that is not a finite number, and a name given twice.
+// The model options of --var NAME, the repeatable --set NAME=VALUE and --max-model-size N.
+// Throws UsageError for a setting without '=' or name, a value that is not a finite number, and
+// a name given twice.
 ModelOptions model_options(const ParsedArgs& args, SettingLabel label);
 
 } // namespace interlin::cli

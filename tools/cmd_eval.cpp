@@ -29,6 +29,8 @@ Options:
   --gradient             also print the gradient of F (exact, forward-mode dual numbers)
   --set NAME=VALUE       override a 'param NAME = ...;' of the model (repeatable)
   --var NAME             evaluate the variable NAME instead of res
+  --max-model-size N     expression nodes and function calls the model may expand to
+                         (default 5000000)
   -o, --output FILE      write the CSV to FILE (written whole or not at all)
   -q, --quiet            no progress lines on stderr
   -h, --help             this help
@@ -69,7 +71,7 @@ void eval_main(const ParsedArgs& a, std::vector<std::string>&) {
   const ModelOptions mo = model_options(a, SettingLabel::setting);
   const std::string output = a.get("output");
   if (!output.empty())
-    check_output_dir(output);
+    check_outputs(a.positional, {output});
   const bool with_gradient = a.has("gradient");
   const Progress progress{a.has("quiet")};
   progress("reading " + a.positional[0]);
@@ -102,7 +104,8 @@ int run_eval(int argc, const char* const* argv) {
                      {{"output", 'o', true, false},
                       {"gradient", 0, false, false},
                       {"set", 0, true, true},
-                      {"var", 0, true, false}},
+                      {"var", 0, true, false},
+                      {"max-model-size", 0, true, false}},
                      eval_main);
 }
 

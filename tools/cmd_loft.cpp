@@ -64,6 +64,8 @@ Options:
                              guides exactly (crossings found and made compatible for you)
   --guide-tolerance T        a guide must pass within T x bounding-box diagonal of every
                              section (default 1e-3)
+  --max-triangles N          largest mesh --samples may ask for (default 20000000, about
+                             4.5 GB of memory)
   --holdout K                study: loft sections 0, K, 2K, ... (and the last), report the
                              exact distance of the withheld sections to the surface
   --withhold I,J,...         study: withhold these section indices (0-based)
@@ -163,7 +165,11 @@ void loft_main(const ParsedArgs& a, std::vector<std::string>& written) {
   opt.span_exponent = sp == "chord" ? 1.0 : sp == "centripetal" ? 0.5 : 0.0;
   const LengthUnit unit =
       unit_of(parse_choice("units", a.get("units", "mm"), {"mm", "cm", "m", "in"}));
-  const auto [nu, nv] = parse_int_pair("samples", a.get("samples", "400,120"), 3, 100000);
+  const auto [nu, nv] = parse_int_pair("samples", a.get("samples", "400,120"), 3, 1000000000);
+  const long long max_triangles = limit_option(a, "max-triangles", limits::mesh_triangles);
+  if (2LL * nu * nv > max_triangles) // two per sample cell; the section rows add a few
+    options_exceed("--samples " + a.get("samples"), std::to_string(2LL * nu * nv) + " triangles",
+                   max_triangles, "max-triangles");
   const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
   const bool cap = a.has("cap"), quiet = a.has("quiet"), with_guides = a.has("guides");
   double guide_tolerance = 1e-3;
@@ -183,10 +189,9 @@ void loft_main(const ParsedArgs& a, std::vector<std::string>& written) {
   if (outputs.empty() && !study)
     throw UsageError("nothing to do: give -o FILE (or --holdout K for a study)");
   std::map<std::string, Kind> kinds;
-  for (const std::string& o : outputs) {
+  for (const std::string& o : outputs)
     kinds[o] = output_kind(o);
-    check_output_dir(o);
-  }
+  check_outputs(with_guides ? std::vector{input, a.get("guides")} : std::vector{input}, outputs);
 
   const Progress progress{quiet};
   progress("reading " + input);
@@ -397,7 +402,8 @@ int run_loft(int argc, const char* const* argv) {
                       {"withhold", 0, true, false},
                       {"view", 0, true, false},
                       {"guides", 0, true, false},
-                      {"guide-tolerance", 0, true, false}},
+                      {"guide-tolerance", 0, true, false},
+                      {"max-triangles", 0, true, false}},
                      loft_main);
 }
 

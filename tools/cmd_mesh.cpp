@@ -52,6 +52,11 @@ Options:
   --set NAME=VALUE       override a 'param NAME = ...;' of the model (repeatable)
   --var NAME             mesh the variable NAME instead of res
   --view AZ,EL           preview camera azimuth and elevation in degrees (default 45,25)
+  --max-grid-nodes N     largest grid --resolution or --cell may ask for (default 1100000000,
+                         each node one evaluation of the model)
+  --max-triangles N      largest mesh (default 20000000, about 4.5 GB of memory)
+  --max-model-size N     expression nodes and function calls the model may expand to
+                         (default 5000000)
   -q, --quiet            no progress or warnings on stderr
   -h, --help             this help
 
@@ -75,13 +80,23 @@ Kind output_kind(const std::string& path) {
   throw UsageError("output '" + path + "': unknown extension (use .stl .obj .ply .off .png)");
 }
 
+// The nodes of the grid that grid_with_resolution / grid_with_cell make for `box`, in floating
+// point (the options may ask for more than any integer type holds).
+double grid_node_estimate(const Eigen::AlignedBox3d& box, const ImplicitMeshOptions& o) {
+  const Eigen::Array3d side = box.sizes().array();
+  const double h = o.cell > 0 ? o.cell : side.maxCoeff() / o.resolution;
+  return ((side / h - 1e-9).ceil().max(1.0) + 1).prod(); // as grid_with_step rounds
+}
+
 // The body of `interlin mesh` (run_command handles help, exit statuses and removal on failure).
 void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   const std::string input = single_input(a, "model file");
   if (a.has("resolution") && a.has("cell"))
     throw UsageError("--resolution and --cell exclude each other");
   ImplicitMeshOptions o;
-  o.resolution = parse_int("resolution", a.get("resolution", "128"), 1, 100000);
+  o.resolution = parse_int("resolution", a.get("resolution", "128"), 1, 1000000000);
+  o.max_triangles = limit_option(a, "max-triangles", limits::mesh_triangles);
+  const long long max_grid_nodes = limit_option(a, "max-grid-nodes", limits::grid_nodes);
   if (a.has("cell")) {
     o.cell = parse_double("cell", a.get("cell"));
     if (!(o.cell > 0))
@@ -113,16 +128,19 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   if (outputs.empty())
     throw UsageError("nothing to do: give -o FILE");
   std::map<std::string, Kind> kinds;
-  for (const std::string& out : outputs) {
+  for (const std::string& out : outputs)
     kinds[out] = output_kind(out);
-    check_output_dir(out);
-  }
+  check_outputs({input}, outputs);
 
   const Progress progress{quiet};
   progress("reading " + input);
   const ImplicitFunction f = load_model(input, mo);
   const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
   // Grid limits are usage errors (the options asked for them), checked before any work.
+  if (const double n = grid_node_estimate(box, o); n > double(max_grid_nodes))
+    options_exceed(a.has("cell") ? "--cell " + a.get("cell")
+                                 : "--resolution " + std::to_string(o.resolution),
+                   "a grid of " + fmt(n, 3) + " nodes", max_grid_nodes, "max-grid-nodes");
   try {
     const RegularGrid g =
         o.cell > 0 ? grid_with_cell(box, o.cell) : grid_with_resolution(box, o.resolution);
@@ -220,7 +238,10 @@ int run_mesh(int argc, const char* const* argv) {
                       {"flip", 0, false, false},
                       {"set", 0, true, true},
                       {"var", 0, true, false},
-                      {"view", 0, true, false}},
+                      {"view", 0, true, false},
+                      {"max-grid-nodes", 0, true, false},
+                      {"max-triangles", 0, true, false},
+                      {"max-model-size", 0, true, false}},
                      mesh_main);
 }
 

@@ -34,7 +34,7 @@ Exit status: 0 success, 1 bad input or failed output, 2 wrong usage.
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << kHelp;
+    std::cerr << "interlin: no command given (see interlin --help)\n";
     return 2;
   }
   const char* cmd = argv[1];

@@ -51,7 +51,10 @@ nlohmann::json convert(const toml::node& node, const std::string& pointer,
 } // namespace
 
 TomlAsJson read_toml_as_json(const std::string& path) {
-  const std::string content = read_input_file(path);
+  return parse_toml_as_json(read_input_file(path), path);
+}
+
+TomlAsJson parse_toml_as_json(std::string_view content, const std::string& path) {
   toml::table root;
   try {
     root = toml::parse(content, path);

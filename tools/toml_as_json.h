@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 
 namespace interlin::cli {
 
@@ -20,5 +21,8 @@ struct TomlAsJson {
 // their TOML text. Throws InputError "PATH: cannot open: why" or
 // "PATH:LINE: TOML syntax error: what (column C)".
 TomlAsJson read_toml_as_json(const std::string& path);
+
+// Same as read_toml_as_json, from the file's content; `path` names it in messages.
+TomlAsJson parse_toml_as_json(std::string_view content, const std::string& path);
 
 } // namespace interlin::cli
