@@ -6,6 +6,11 @@ function(interlin_defaults target)
                                              -fno-sanitize-recover=undefined)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+  if(INTERLIN_FUZZ) # coverage for libFuzzer; the fuzz binaries add -fsanitize=fuzzer at link
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link,address,undefined
+                                             -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
 endfunction()
 
 # A module library: sources in <module>/src, public headers in <module>/include.
