@@ -62,7 +62,8 @@ void BM_surface_mesh_200k(benchmark::State& st) {
 }
 BENCHMARK(BM_surface_mesh_200k)->Unit(benchmark::kMillisecond);
 
-// write_mesh of the fixed mesh (OpenMesh writer, atomic temp file + rename).
+// write_mesh of the fixed mesh (STL: OpenMesh writer; PLY, OBJ: interlin, double precision;
+// atomic temp file + rename).
 void BM_write_mesh(benchmark::State& st, const std::string& ext) {
   const MeshFixture& fx = mesh_fixture();
   const std::string path = "/tmp/interlin_bench_mesh" + ext;

@@ -152,6 +152,13 @@ std::string fmt(double x, int precision) {
   return s.str();
 }
 
+MeshPrecision mesh_precision(const ParsedArgs& args) {
+  return parse_choice("mesh-precision", args.get("mesh-precision", "double"),
+                      {"double", "single"}) == "double"
+             ? MeshPrecision::float64
+             : MeshPrecision::float32;
+}
+
 ModelOptions model_options(const ParsedArgs& args, SettingLabel label) {
   ModelOptions mo;
   mo.max_size = limit_option(args, "max-model-size", limits::model_size);

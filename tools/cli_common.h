@@ -7,6 +7,7 @@
 
 #include "interlin/interflatation/limits.h"
 #include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/reconstruction/io/mesh_io.h"
 
 #include <chrono>
 #include <functional>
@@ -60,6 +61,9 @@ void print_written(const std::vector<std::string>& paths);
 
 // `x` with `precision` significant digits, as an ostream prints it.
 std::string fmt(double x, int precision = 4);
+
+// --mesh-precision double|single (default double): the coordinates of PLY and OBJ outputs.
+MeshPrecision mesh_precision(const ParsedArgs& args);
 
 // How a --set value that is not a number is named in its error: the whole NAME=VALUE (eval) or
 // the NAME alone (mesh).

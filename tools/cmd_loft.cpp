@@ -56,6 +56,9 @@ Options:
   --span-param chord|centripetal|uniform
                              spacing of the sections' parameters (default centripetal)
   --units mm|cm|m|in         unit label written to IGES (coordinates are not scaled)
+  --mesh-precision double|single
+                             coordinates in .ply and .obj files (default double: exact;
+                             .stl is single precision by definition, .off too)
   --view AZ,EL               preview camera: azimuth and elevation in degrees around the
                              span direction (default 45,25)
   --guides FILE              guide lines (CSV guide,index,x,y,z; docs/formats.md): spanwise
@@ -171,6 +174,7 @@ void loft_main(const ParsedArgs& a, std::vector<std::string>& written) {
     options_exceed("--samples " + a.get("samples"), std::to_string(2LL * nu * nv) + " triangles",
                    max_triangles, "max-triangles");
   const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
+  const MeshPrecision precision = mesh_precision(a);
   const bool cap = a.has("cap"), quiet = a.has("quiet"), with_guides = a.has("guides");
   double guide_tolerance = 1e-3;
   if (a.has("guide-tolerance")) {
@@ -324,7 +328,7 @@ void loft_main(const ParsedArgs& a, std::vector<std::string>& written) {
     progress("writing " + o);
     switch (kinds.at(o)) {
     case Kind::mesh:
-      write_mesh(o, V, F);
+      write_mesh(o, V, F, precision);
       break;
     case Kind::iges: {
       IgesOptions io;
@@ -403,7 +407,8 @@ int run_loft(int argc, const char* const* argv) {
                       {"view", 0, true, false},
                       {"guides", 0, true, false},
                       {"guide-tolerance", 0, true, false},
-                      {"max-triangles", 0, true, false}},
+                      {"max-triangles", 0, true, false},
+                      {"mesh-precision", 0, true, false}},
                      loft_main);
 }
 

@@ -52,6 +52,9 @@ Options:
   --set NAME=VALUE       override a 'param NAME = ...;' of the model (repeatable)
   --var NAME             mesh the variable NAME instead of res
   --view AZ,EL           preview camera azimuth and elevation in degrees (default 45,25)
+  --mesh-precision double|single
+                         coordinates in .ply and .obj files (default double: exact; .stl
+                         is single precision by definition, .off too)
   --max-grid-nodes N     largest grid --resolution or --cell may ask for (default 1100000000,
                          each node one evaluation of the model)
   --max-triangles N      largest mesh (default 20000000, about 4.5 GB of memory)
@@ -123,6 +126,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   const int smooth = parse_int("smooth", a.get("smooth", "0"), 0, 1000);
   const bool flip = a.has("flip"), quiet = a.has("quiet");
   const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
+  const MeshPrecision precision = mesh_precision(a);
   const ModelOptions mo = model_options(a, SettingLabel::name);
   const std::vector<std::string> outputs = a.all("output");
   if (outputs.empty())
@@ -209,7 +213,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   for (const std::string& out : outputs) {
     progress("writing " + out);
     if (kinds.at(out) == Kind::mesh) {
-      write_mesh(out, V, F);
+      write_mesh(out, V, F, precision);
     } else {
       PreviewOptions po;
       po.azimuth_deg = azimuth;
@@ -241,6 +245,7 @@ int run_mesh(int argc, const char* const* argv) {
                       {"view", 0, true, false},
                       {"max-grid-nodes", 0, true, false},
                       {"max-triangles", 0, true, false},
+                      {"mesh-precision", 0, true, false},
                       {"max-model-size", 0, true, false}},
                      mesh_main);
 }

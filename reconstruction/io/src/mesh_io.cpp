@@ -1,5 +1,8 @@
 #include "interlin/reconstruction/io/mesh_io.h"
 
+#include "mesh_formats.h"
+
+#include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/atomic_file.h"
 
 // OpenMesh: MeshIO.hh must come before the mesh kernel header.
@@ -135,29 +138,33 @@ private:
 
 } // namespace
 
-void write_mesh(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+void write_mesh(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                MeshPrecision precision) {
   const std::string ext = lower_extension(path);
-  OpenMesh::IO::Options opt;
-  if (ext == ".stl") {
-    opt += OpenMesh::IO::Options::Binary;
-  } else if (ext == ".ply") {
-    opt += OpenMesh::IO::Options::Binary;
-    opt += OpenMesh::IO::Options::LSB;
-  } else if (ext != ".obj" && ext != ".off") {
+  if (ext != ".stl" && ext != ".ply" && ext != ".obj" && ext != ".off")
     throw std::invalid_argument("write_mesh: unknown mesh extension '" + ext + "' in " + path +
                                 " (supported: .stl, .obj, .ply, .off)");
-  }
   if (V.cols() != 3 || F.cols() != 3)
     throw std::invalid_argument("write_mesh: V and F must have 3 columns");
   if (F.size() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= V.rows()))
     throw std::invalid_argument("write_mesh: face index outside [0, #V)");
-
+  const bool in_double = precision == MeshPrecision::float64;
+  if (ext == ".ply" || ext == ".obj") { // OpenMesh would round to float: our own writers
+    write_file_atomically(path, [&](std::ostream& out) {
+      ext == ".ply" ? detail::write_ply(out, V, F, in_double)
+                    : detail::write_obj(out, V, F, in_double);
+    });
+    return;
+  }
+  OpenMesh::IO::Options opt;
+  if (ext == ".stl")
+    opt += OpenMesh::IO::Options::Binary;
   AtomicPath target(path); // same extension: OpenMesh picks the writer from it
   SoupExporter exporter(V, F);
   bool ok = false;
   {
     QuietLog quiet;
-    // 17 significant digits in the ASCII formats (more than the 9 a float needs).
+    // 17 significant digits in OFF (more than the 9 a float needs).
     ok = OpenMesh::IO::IOManager().write(target.temp(), exporter, opt, 17);
   }
   if (!ok || !std::filesystem::exists(target.temp()))
@@ -165,7 +172,21 @@ void write_mesh(const std::string& path, const Eigen::MatrixXd& V, const Eigen::
   target.commit();
 }
 
+void parse_mesh(std::string_view content, const std::string& path, Eigen::MatrixXd& V,
+                Eigen::MatrixXi& F) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".ply")
+    detail::parse_ply(content, path, V, F);
+  else if (ext == ".obj")
+    detail::parse_obj(content, path, V, F);
+  else
+    throw std::invalid_argument("parse_mesh: " + path +
+                                ": only .ply and .obj are read from memory");
+}
+
 void read_mesh(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi& F) {
+  if (const std::string ext = lower_extension(path); ext == ".ply" || ext == ".obj")
+    return parse_mesh(read_input_file(path), path, V, F);
   if (!std::filesystem::is_regular_file(path))
     throw std::runtime_error("cannot read " + path + ": no such file");
   OMMesh mesh;
