@@ -1,6 +1,9 @@
 # Debian packages only (tools/debian-packages.txt). Usage verified in shared/BUILD-NOTES.md.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)          # Eigen3::Eigen
 find_package(OpenMesh REQUIRED)                      # OpenMeshCore, OpenMeshTools (OPENMESH_LIBRARIES is empty)
+# PCL (point-cloud filters, normals, binary PCD/PLY decoding; reconstruction/clouds only). Its
+# config loads VTK, whose MPI target needs the C language (enabled in the top CMakeLists).
+find_package(PCL 1.13 REQUIRED COMPONENTS common io filters features kdtree search)
 find_package(flann REQUIRED CONFIG)                  # flann::flann_cpp (the C++ headers also need lz4)
 find_package(PNG REQUIRED)                           # PNG::PNG, for the shaded preview
 find_package(nlohmann_json 3 REQUIRED)               # nlohmann_json::nlohmann_json, surface JSON

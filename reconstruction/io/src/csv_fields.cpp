@@ -1,4 +1,4 @@
-#include "csv_fields.h"
+#include "interlin/reconstruction/io/csv_fields.h"
 
 #include "interlin/reconstruction/io/input_error.h"
 
@@ -9,7 +9,7 @@ namespace interlin {
 
 LineReader::LineReader(std::string_view text) : text_(text) {
   if (text_.substr(0, 3) == "\xEF\xBB\xBF")
-    text_.remove_prefix(3);
+    pos_ = 3;
 }
 
 bool LineReader::next(std::string_view& line) {
@@ -42,6 +42,29 @@ void split_commas(std::string_view line, std::vector<std::string_view>& out) {
   for (;;) {
     const size_t c = line.find(',');
     out.push_back(trim(line.substr(0, c)));
+    if (c == std::string_view::npos)
+      return;
+    line.remove_prefix(c + 1);
+  }
+}
+
+void split_plain(std::string_view line, std::vector<std::string_view>& out) {
+  out.clear();
+  line = trim(line);
+  if (line.empty())
+    return;
+  for (;;) {
+    const size_t c = line.find(',');
+    std::string_view piece = trim(line.substr(0, c));
+    if (piece.empty())
+      out.push_back(piece);
+    while (!piece.empty()) {
+      size_t e = 0;
+      while (e < piece.size() && !is_blank(piece[e]))
+        ++e;
+      out.push_back(piece.substr(0, e));
+      piece = trim(piece.substr(e));
+    }
     if (c == std::string_view::npos)
       return;
     line.remove_prefix(c + 1);

@@ -1,7 +1,7 @@
 // Guide-line CSV reader (docs/formats.md, "Guide files").
 #include "interlin/reconstruction/io/guide_csv.h"
 
-#include "csv_fields.h"
+#include "interlin/reconstruction/io/csv_fields.h"
 
 #include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/input_error.h"

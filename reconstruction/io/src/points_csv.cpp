@@ -1,8 +1,7 @@
 #include "interlin/reconstruction/io/points_csv.h"
 
-#include "csv_fields.h"
-
 #include "interlin/interflatation/read_input_file.h"
+#include "interlin/reconstruction/io/csv_fields.h"
 #include "interlin/reconstruction/io/input_error.h"
 
 #include <array>
@@ -11,17 +10,69 @@
 
 namespace interlin {
 
-Eigen::MatrixX3d read_points_csv(const std::string& path) {
-  return parse_points_csv(read_input_file(path), path);
+namespace {
+
+// Header names of the three normal columns (either spelling, not mixed).
+constexpr std::array<std::array<const char*, 3>, 2> kNormalNames{
+    {{"nx", "ny", "nz"}, {"normal_x", "normal_y", "normal_z"}}};
+
+// Column index of each wanted name in the header fields (-1 when absent); throws for a name that
+// appears twice.
+template <size_t N>
+std::array<int, N> find_columns(const std::vector<std::string_view>& f,
+                                const std::array<const char*, N>& names, const std::string& path,
+                                long line) {
+  std::array<int, N> col;
+  col.fill(-1);
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const std::string name = ascii_lower(f[i]);
+    for (size_t c = 0; c < N; ++c)
+      if (name == names[c]) {
+        if (col[c] >= 0)
+          throw_input_error(path, line,
+                            "column " + name + " appears twice in the header (fields " +
+                                std::to_string(col[c] + 1) + " and " + std::to_string(i + 1) +
+                                ")");
+        col[c] = static_cast<int>(i);
+      }
+  }
+  return col;
 }
 
-Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path) {
+// The normal columns of the header: all three of one spelling (its index into kNormalNames in
+// `spelling`), or none (-1).
+std::array<int, 3> normal_columns(const std::vector<std::string_view>& f, const std::string& path,
+                                  long line, size_t& spelling) {
+  for (spelling = 0; spelling < kNormalNames.size(); ++spelling) {
+    const auto& names = kNormalNames[spelling];
+    const std::array<int, 3> col = find_columns(f, names, path, line);
+    const int found = (col[0] >= 0) + (col[1] >= 0) + (col[2] >= 0);
+    if (found == 3)
+      return col;
+    if (found > 0)
+      throw_input_error(path, line,
+                        std::string("header names only some of the normal columns ") + names[0] +
+                            ", " + names[1] + ", " + names[2] + ": give all three or none");
+  }
+  return {-1, -1, -1};
+}
+
+Eigen::MatrixX3d to_matrix(const std::vector<std::array<double, 3>>& rows) {
+  Eigen::MatrixX3d M(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      M(static_cast<Eigen::Index>(i), c) = rows[i][c];
+  return M;
+}
+
+// The parser behind parse_points_csv and parse_points_normals_csv.
+PointsAndNormals parse_csv(std::string_view text, const std::string& path, bool with_normals) {
   LineReader lines(text);
   std::string_view line;
-  std::array<int, 3> col{-1, -1, -1};
-  std::size_t fields = 0;
+  std::array<int, 3> col{-1, -1, -1}, ncol{-1, -1, -1};
+  std::size_t fields = 0, spelling = 0;
   long header_line = 0;
-  std::vector<std::array<double, 3>> rows;
+  std::vector<std::array<double, 3>> rows, normals;
   std::vector<std::string_view> f; // the fields of the current line
   while (lines.next(line)) {
     const long number = lines.number();
@@ -32,18 +83,7 @@ Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path
     if (header_line == 0) {
       header_line = number;
       fields = f.size();
-      for (std::size_t i = 0; i < f.size(); ++i) {
-        const std::string name = ascii_lower(f[i]);
-        for (int c = 0; c < 3; ++c)
-          if (name == std::string(1, static_cast<char>('x' + c))) {
-            if (col[c] >= 0)
-              throw_input_error(path, number,
-                                "column " + name + " appears twice in the header (fields " +
-                                    std::to_string(col[c] + 1) + " and " + std::to_string(i + 1) +
-                                    ")");
-            col[c] = static_cast<int>(i);
-          }
-      }
+      col = find_columns(f, std::array<const char*, 3>{"x", "y", "z"}, path, number);
       std::string missing;
       for (int c = 0; c < 3; ++c)
         if (col[c] < 0)
@@ -52,6 +92,8 @@ Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path
         throw_input_error(path, number,
                           "header lacks the column(s) " + missing +
                               ": a points file starts with a header naming the columns x, y, z");
+      if (with_normals)
+        ncol = normal_columns(f, path, number, spelling);
       continue;
     }
     if (f.size() != fields)
@@ -59,23 +101,43 @@ Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path
                         "expected " + std::to_string(fields) +
                             " comma-separated fields (as in the header on line " +
                             std::to_string(header_line) + "), found " + std::to_string(f.size()));
-    std::array<double, 3> p{};
+    std::array<double, 3> p{}, n{};
     for (int c = 0; c < 3; ++c) {
       const char name[2] = {static_cast<char>('x' + c), 0};
       p[c] = field_number(f[static_cast<std::size_t>(col[c])], path, number, name);
     }
     rows.push_back(p);
+    if (ncol[0] >= 0) {
+      for (int c = 0; c < 3; ++c)
+        n[c] = field_number(f[static_cast<std::size_t>(ncol[c])], path, number,
+                            kNormalNames[spelling][c]);
+      normals.push_back(n);
+    }
   }
   if (header_line == 0)
     throw_input_error(path, 0,
                       "no header: the file is empty or holds only comments and blank lines");
   if (rows.empty())
     throw_input_error(path, 0, "no points after the header on line " + std::to_string(header_line));
-  Eigen::MatrixX3d P(static_cast<Eigen::Index>(rows.size()), 3);
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      P(static_cast<Eigen::Index>(i), c) = rows[i][c];
-  return P;
+  return {to_matrix(rows), normals.empty() ? Eigen::MatrixX3d(0, 3) : to_matrix(normals)};
+}
+
+} // namespace
+
+Eigen::MatrixX3d read_points_csv(const std::string& path) {
+  return parse_points_csv(read_input_file(path), path);
+}
+
+Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path) {
+  return parse_csv(text, path, false).points;
+}
+
+PointsAndNormals read_points_normals_csv(const std::string& path) {
+  return parse_points_normals_csv(read_input_file(path), path);
+}
+
+PointsAndNormals parse_points_normals_csv(std::string_view text, const std::string& path) {
+  return parse_csv(text, path, true);
 }
 
 } // namespace interlin

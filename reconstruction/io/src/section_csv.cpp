@@ -1,6 +1,6 @@
 #include "interlin/reconstruction/io/section_csv.h"
 
-#include "csv_fields.h"
+#include "interlin/reconstruction/io/csv_fields.h"
 
 #include "interlin/interflatation/read_input_file.h"
 #include "interlin/reconstruction/io/atomic_file.h"
@@ -23,31 +23,6 @@ using std::string_view;
 
 std::string quote(string_view s) {
   return "'" + std::string(s) + "'";
-}
-
-// Fields separated by commas and/or whitespace: the line is cut at commas and each piece at
-// whitespace; a piece holding only whitespace is one empty field ("1,,2" has three fields).
-void split_plain(string_view line, std::vector<string_view>& out) {
-  out.clear();
-  line = trim(line);
-  if (line.empty())
-    return;
-  for (;;) {
-    const size_t c = line.find(',');
-    string_view piece = trim(line.substr(0, c));
-    if (piece.empty())
-      out.push_back(piece);
-    while (!piece.empty()) {
-      size_t e = 0;
-      while (e < piece.size() && !is_blank(piece[e]))
-        ++e;
-      out.push_back(piece.substr(0, e));
-      piece = trim(piece.substr(e));
-    }
-    if (c == string_view::npos)
-      return;
-    line.remove_prefix(c + 1);
-  }
 }
 
 bool is_comment(string_view trimmed) {

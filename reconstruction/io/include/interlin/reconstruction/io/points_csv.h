@@ -20,4 +20,18 @@ Eigen::MatrixX3d read_points_csv(const std::string& path);
 // Same as read_points_csv, from the file's content `text`; `path` names it in messages.
 Eigen::MatrixX3d parse_points_csv(std::string_view text, const std::string& path);
 
+// Points with optional normals (point-cloud CSV files, docs/formats.md "Point clouds").
+//   points   #P by 3
+//   normals  #P by 3 when the header names the normal columns nx, ny, nz (or normal_x,
+//            normal_y, normal_z; all three or none), else 0 by 3; values as read (finite, not
+//            normalised)
+struct PointsAndNormals {
+  Eigen::MatrixX3d points, normals;
+};
+
+// read_points_csv that also reads the normal columns; same errors, and "PATH:LINE: header names
+// only some of the normal columns nx, ny, nz: give all three or none".
+PointsAndNormals read_points_normals_csv(const std::string& path);
+PointsAndNormals parse_points_normals_csv(std::string_view text, const std::string& path);
+
 } // namespace interlin

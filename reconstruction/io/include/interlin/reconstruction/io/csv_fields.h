@@ -1,7 +1,7 @@
 #pragma once
-// Lines and fields of the section, guide and points readers: line iteration, ASCII lower case
-// for header names, and the strict number and integer rules with their error messages
-// (docs/formats.md, "Section files").
+// Lines and fields of the text readers (section, guide and points CSV; the ASCII point-cloud
+// formats of reconstruction/clouds): line iteration, ASCII lower case for header names, and the
+// strict number and integer rules with their error messages (docs/formats.md, "Section files").
 
 #include <string>
 #include <string_view>
@@ -17,6 +17,9 @@ public:
   bool next(std::string_view& line);
   // The 1-based number of the line last returned.
   long number() const { return number_; }
+  // The offset in the text (BOM included) of the next line: where binary data after a text
+  // header starts.
+  std::size_t position() const { return pos_; }
 
 private:
   std::string_view text_;
@@ -32,6 +35,10 @@ std::string_view trim(std::string_view s);
 
 // The comma-separated fields of `line`, each trimmed, into `out` ("1,,2" has three fields).
 void split_commas(std::string_view line, std::vector<std::string_view>& out);
+
+// Fields separated by commas and/or whitespace: the line is cut at commas and each piece at
+// whitespace; a piece holding only whitespace is one empty field ("1,,2" has three fields).
+void split_plain(std::string_view line, std::vector<std::string_view>& out);
 
 // `s` with A-Z lowered (header names are matched case-insensitively, independent of locale).
 std::string ascii_lower(std::string_view s);

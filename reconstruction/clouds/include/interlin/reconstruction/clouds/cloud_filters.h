@@ -1,0 +1,33 @@
+#pragma once
+// Cloud preparation through PCL: statistical outlier removal, voxel-grid downsampling and normal
+// estimation (PCL's filters and features with its FLANN kd-tree). Orientation of the normals is
+// orient_normals (orient_normals.h).
+
+#include "interlin/reconstruction/clouds/point_cloud.h"
+
+namespace interlin {
+
+// pcl::StatisticalOutlierRemoval: a point is removed when its mean distance to its k nearest
+// neighbours exceeds the mean of that quantity over the cloud by more than std_ratio standard
+// deviations. Normals, when present, follow their points.
+// Inputs: c (#P >= 2 points), k >= 1 neighbours, std_ratio > 0
+// Output: the kept points in input order; `removed` (optional) the number removed.
+// Throws std::invalid_argument for bad parameters.
+PointCloud remove_statistical_outliers(const PointCloud& c, int k, double std_ratio,
+                                       Eigen::Index* removed = nullptr);
+
+// pcl::VoxelGrid: the points in each cubic voxel of side `leaf` replaced by their centroid
+// (normals averaged and renormalised; dropped when an average vanishes, which only happens for
+// unoriented normals: they are then estimated again). Output order is PCL's (by voxel).
+// Throws std::invalid_argument for leaf <= 0, and when the voxel count would overflow PCL's
+// 32-bit voxel index (the message names the smallest leaf that fits).
+PointCloud voxel_downsample(const PointCloud& c, double leaf);
+
+// pcl::NormalEstimationOMP: the normal of each point is the eigenvector of the smallest
+// eigenvalue of the covariance of its k nearest neighbours (itself included). Unoriented: the
+// sign is arbitrary until orient_normals.
+// Inputs: P #P by 3 (#P > k), k >= 3, threads (0: all cores)
+// Output: #P by 3 unit normals.
+Eigen::MatrixX3d estimate_normals(const Eigen::MatrixX3d& P, int k, int threads = 0);
+
+} // namespace interlin

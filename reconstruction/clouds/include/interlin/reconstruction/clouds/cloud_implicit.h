@@ -1,0 +1,130 @@
+#pragma once
+// Unstructured scans -> implicit function: a multi-level partition of unity of local surface
+// fits on an adaptive octree (Ohtake, Belyaev, Alexa, Turk, Seidel, "Multi-level partition of
+// unity implicits", ACM Trans. Graph. 22(3), SIGGRAPH 2003; docs/formulas.md "Point clouds").
+//
+//   F(x) = sum_i w_i(x) Q_i(x) / sum_i w_i(x),   w_i(x) = psi(|x - c_i| / R_i),
+//   psi(r) = (1 - r)^4 (4 r + 1) on [0, 1) (Wendland's C2 function), R_i = support x the cell's
+//   diagonal,
+//
+// over the leaves i of an octree: each leaf cell (centre c_i) holds a local function Q_i fitted
+// by weighted least squares to the points in its ball, and a cell is split while its fit misses
+// the points by more than the noise. F > 0 inside, F = 0 on the surface, F < 0 outside; F is C2
+// where the Q_i are, and Q ~ signed distance near the surface (|grad Q| ~ 1).
+// Local functions (Q > 0 below the sheet, i.e. inside):
+//   one sheet   Q = h(u, v) - w, (u, v, w) the point in a frame whose w axis is the mean
+//               outward normal, h a quadratic (a plane for cells far from the points);
+//   two sheets  Q = Q1 and Q2 joined by Rvachev's R-conjunction Q1 + Q2 - sqrt(Q1^2 + Q2^2)
+//               (thin walls, convex edges) or R-disjunction Q1 + Q2 + sqrt(Q1^2 + Q2^2)
+//               (concave edges): the normals of the cell's points fall into two groups, e.g.
+//               both sides of a blade near its leading edge (MPU's sharp-feature functions,
+//               with R-functions in place of max/min so F stays smooth off the edge).
+
+#include "interlin/interflatation/implicit_function.h"
+#include "interlin/reconstruction/clouds/point_cloud.h"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace interlin {
+
+// Q(x) = h(u, v) - w with (u, v, w) = frame * (x - origin),
+// h(u, v) = c[0] u^2 + c[1] u v + c[2] v^2 + c[3] u + c[4] v + c[5].
+//   frame  rows: two tangents and the outward normal (orthonormal)
+struct HeightSheet {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+  std::array<double, 6> c{};
+};
+
+// The local function of one octree leaf.
+//   centre, radius  the partition-of-unity support ball
+//   level, cell     the leaf's octree address: level L, integer cell (i, j, k) in [0, 2^L)^3
+//   sheets          1 or 2; conjunction: how two sheets join (else disjunction)
+struct LocalFit {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0;
+  int level = 0;
+  Eigen::Array3i cell = Eigen::Array3i::Zero();
+  int sheets = 1;
+  bool conjunction = true;
+  std::array<HeightSheet, 2> sheet{};
+};
+
+// The fitted model: what an .ifl file stores. Evaluate through cloud_implicit_function.
+//   origin, size  the octree's root cube [origin, origin + size]^3
+//   box           the region of interest (the points' box with a margin): the function's box
+//   support       PU radius / cell diagonal used for every leaf (Ohtake et al.'s alpha); each
+//                 fit's radius is support x its cell's diagonal
+//   fits          the octree leaves; together they tile the root cube
+struct CloudImplicit {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double size = 1;
+  Eigen::AlignedBox3d box;
+  double support = 0.6;
+  std::vector<LocalFit> fits;
+};
+
+struct CloudFitOptions {
+  double noise = 0;    // sigma of the noise normal to the surface; 0: estimate_noise
+  int min_points = 20; // points per local fit (a cell with fewer grows its ball)
+  int max_depth = 12;  // octree levels below the root cube
+  // Radii per cell diagonal: the partition-of-unity support ball (> 0.5 so that the balls cover
+  // the cells; 0.6: about 5 balls overlap at a point, half of Ohtake et al.'s 0.75, which doubles
+  // the evaluation speed for 5 to 20 % larger errors on noisy tori) and the ball whose points a
+  // cell's fit uses (Ohtake et al.'s 0.75).
+  double support = 0.6, fit_ball = 0.75;
+  int threads = 0; // 0: all cores
+  // Progress lines (one per octree level); called from the calling thread.
+  std::function<void(const std::string&)> progress;
+};
+
+struct CloudFitInfo {
+  double noise = 0;            // sigma used
+  bool noise_estimated = true; // ... estimated from the points (else given)
+  long cells = 0, leaves = 0, two_sheet_leaves = 0, far_leaves = 0;
+  int depth = 0;             // deepest level reached
+  double rms_distance = 0;   // over the input points: |F| / |grad F| (first-order distance)
+  double max_distance = 0;   // ... its maximum
+  double within_3_sigma = 0; // fraction of points with |F| / |grad F| <= 3 sigma
+  bool flipped = false;      // the normals pointed inward and F was negated
+  double seconds = 0;
+};
+
+// Fits the implicit function to a cloud with consistently oriented normals (orient_normals).
+// A cell of side s has the support ball R = support * s * sqrt(3) around its centre; the points
+// in the ball of radius fit_ball * s * sqrt(3) (weights psi(|p - c| / that radius)) are fitted
+// by one or two sheets; the cell is a leaf when the fit's
+// rms distance to its points is at most 1.5 sigma and the largest at most 4 sigma (both floored
+// at 1e-6 of the root cube), when its children would hold fewer than min_points points each
+// (it holds fewer than 4 min_points: a ball of half the radius holds about a quarter of a
+// surface's points), or at max_depth. A cell with fewer than min_points points in its fit ball
+// takes its min_points nearest points: fitted like any cell when its support ball holds one of
+// them, else a plane through those facing like the nearest (Hoppe's signed distance to the
+// nearest tangent plane, which keeps its sign far away where a quadric would curve back).
+// After fitting, F at the root cube's corners must be negative (outside); when most are positive
+// the normals pointed inward, F is negated and info.flipped is set.
+// Throws std::invalid_argument for a cloud without normals, fewer than min_points points or bad
+// options.
+CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& options = {},
+                                 CloudFitInfo* info = nullptr);
+
+// The model as an ImplicitFunction (value and exact gradient, box = model.box). Builds the
+// evaluation structure once (a lookup octree whose leaves list the support balls meeting them),
+// so that a point costs one descent and a short loop. Outside the root cube,
+// F(x) = F(x') - |x - x'| with x' the nearest point of the cube (continuous, negative far away).
+// Safe for concurrent calls; a point's value does not depend on the batch it comes in.
+// Throws std::invalid_argument when the fits do not tile the root cube or a ball does not cover
+// its cell (a model read from a file).
+ImplicitFunction cloud_implicit_function(std::shared_ptr<const CloudImplicit> model);
+
+// The value of one local function and its gradient (exposed for tests and the .ifl reader's
+// checks).
+double local_fit_value(const LocalFit& f, const Eigen::Vector3d& x, Eigen::Vector3d* gradient);
+
+} // namespace interlin

@@ -1,0 +1,47 @@
+#pragma once
+// The preparation steps of the cloud job, in order: repeated points and degenerate clouds
+// (check_cloud), statistical outlier removal, voxel downsampling, normals (kept, estimated) and
+// their orientation. Each step is an option with a default that suits scans.
+
+#include "interlin/reconstruction/clouds/point_cloud.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace interlin {
+
+enum class NormalSource {
+  automatic, // the file's normals when consistently oriented, re-oriented when not, else estimated
+  file,      // the file's normals as they are (they must be oriented outward)
+  estimate   // always estimated (PCL) and oriented (orient_normals)
+};
+
+struct CloudPrepOptions {
+  int outlier_neighbours = 16; // statistical outlier removal: k (0 switches it off) ...
+  double outlier_ratio = 3.0;  // ... and the standard-deviation multiple
+  double voxel = 0;            // voxel-grid downsampling leaf size (0: off)
+  NormalSource normals = NormalSource::automatic;
+  int normal_neighbours = 16; // PCL normal estimation: k nearest neighbours
+  int orient_neighbours = 10; // orientation graph: k nearest neighbours
+  int threads = 0;
+  std::function<void(const std::string&)> progress; // one line per step
+};
+
+struct CloudPrepReport {
+  Eigen::Index read = 0, distinct = 0, outliers = 0, kept = 0;
+  bool normals_estimated = false, normals_reoriented = false;
+  double disagreement = 0;     // orientation_disagreement of the file's normals (automatic)
+  Eigen::Index components = 0; // parts of the orientation graph
+};
+
+// Inputs: path (named in messages), the cloud as read, options.
+// Output: the cloud with unit normals, oriented outward (or as the file gave them); the report
+// (optional) and notes (optional, lines for the summary).
+// Throws InputError "PATH: ..." for degenerate clouds (check_cloud) and for
+// NormalSource::file without normals in the file; std::invalid_argument for bad options.
+PointCloud prepare_cloud(const std::string& path, const PointCloud& cloud,
+                         const CloudPrepOptions& options = {}, CloudPrepReport* report = nullptr,
+                         std::vector<std::string>* notes = nullptr);
+
+} // namespace interlin

@@ -1,0 +1,146 @@
+// The PCL filters and features used by the cloud job (the one translation unit that sees PCL's
+// filter and feature headers; compile time matters on 2-core CI).
+#include "interlin/reconstruction/clouds/cloud_filters.h"
+
+#include "interlin/reconstruction/meshing/parallel_for.h"
+
+#include <pcl/features/normal_3d_omp.h>
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace interlin {
+
+namespace {
+
+// Coordinates relative to `origin` in float (PCL's point types are single precision; the offset
+// keeps far-from-origin scans, e.g. blades at radius 20, at full float resolution).
+pcl::PointCloud<pcl::PointNormal>::Ptr to_pcl(const PointCloud& c, const Eigen::Vector3d& origin) {
+  auto out = std::make_shared<pcl::PointCloud<pcl::PointNormal>>();
+  out->resize(static_cast<size_t>(c.points.rows()));
+  for (Eigen::Index i = 0; i < c.points.rows(); ++i) {
+    pcl::PointNormal& p = (*out)[static_cast<size_t>(i)];
+    p.x = static_cast<float>(c.points(i, 0) - origin(0));
+    p.y = static_cast<float>(c.points(i, 1) - origin(1));
+    p.z = static_cast<float>(c.points(i, 2) - origin(2));
+    const bool n = c.has_normals();
+    p.normal_x = n ? static_cast<float>(c.normals(i, 0)) : 0.f;
+    p.normal_y = n ? static_cast<float>(c.normals(i, 1)) : 0.f;
+    p.normal_z = n ? static_cast<float>(c.normals(i, 2)) : 0.f;
+    p.curvature = 0.f;
+  }
+  return out;
+}
+
+Eigen::Vector3d centre(const Eigen::MatrixX3d& P) {
+  return 0.5 * (P.colwise().minCoeff() + P.colwise().maxCoeff()).transpose();
+}
+
+} // namespace
+
+PointCloud remove_statistical_outliers(const PointCloud& c, int k, double std_ratio,
+                                       Eigen::Index* removed) {
+  if (k < 1 || !(std_ratio > 0) || !std::isfinite(std_ratio))
+    throw std::invalid_argument("outlier removal: need k >= 1 and std_ratio > 0");
+  if (c.points.rows() <= k) {
+    if (removed)
+      *removed = 0;
+    return c;
+  }
+  const Eigen::Vector3d o = centre(c.points);
+  pcl::StatisticalOutlierRemoval<pcl::PointNormal> sor;
+  sor.setInputCloud(to_pcl(c, o));
+  sor.setMeanK(k);
+  sor.setStddevMulThresh(std_ratio);
+  pcl::Indices kept;
+  sor.filter(kept);
+  PointCloud out;
+  out.points.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  if (c.has_normals())
+    out.normals.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  for (size_t j = 0; j < kept.size(); ++j) {
+    out.points.row(static_cast<Eigen::Index>(j)) = c.points.row(kept[j]);
+    if (c.has_normals())
+      out.normals.row(static_cast<Eigen::Index>(j)) = c.normals.row(kept[j]);
+  }
+  if (removed)
+    *removed = c.points.rows() - out.points.rows();
+  return out;
+}
+
+PointCloud voxel_downsample(const PointCloud& c, double leaf) {
+  if (!(leaf > 0) || !std::isfinite(leaf))
+    throw std::invalid_argument("voxel downsampling: the voxel size must be positive");
+  const Eigen::Vector3d lo = c.points.colwise().minCoeff(), hi = c.points.colwise().maxCoeff();
+  const Eigen::Array3d cells = ((hi - lo).array() / leaf).floor() + 1;
+  // PCL indexes voxels with a 32-bit integer (it refuses larger grids with a console message).
+  const double limit = double(std::numeric_limits<std::int32_t>::max());
+  if (cells.prod() > limit)
+    throw std::invalid_argument("voxel downsampling: voxel size " + std::to_string(leaf) +
+                                " gives " + std::to_string(cells.prod()) +
+                                " voxels, more than PCL's 32-bit index; use at least " +
+                                std::to_string(std::cbrt((hi - lo).array().prod() / limit) * 1.01));
+  const Eigen::Vector3d o = centre(c.points);
+  pcl::VoxelGrid<pcl::PointNormal> grid;
+  grid.setInputCloud(to_pcl(c, o));
+  const float l = static_cast<float>(leaf);
+  grid.setLeafSize(l, l, l);
+  grid.setDownsampleAllData(true);
+  pcl::PointCloud<pcl::PointNormal> f;
+  grid.filter(f);
+  PointCloud out;
+  const Eigen::Index n = static_cast<Eigen::Index>(f.size());
+  out.points.resize(n, 3);
+  out.normals.resize(c.has_normals() ? n : 0, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const pcl::PointNormal& p = f[static_cast<size_t>(i)];
+    out.points.row(i) = Eigen::RowVector3d(p.x, p.y, p.z) + o.transpose();
+    if (c.has_normals())
+      out.normals.row(i) = Eigen::RowVector3d(p.normal_x, p.normal_y, p.normal_z);
+  }
+  if (c.has_normals()) {
+    const Eigen::VectorXd len = out.normals.rowwise().norm();
+    // kVanishedNormal: averages of opposite (unoriented) normals cancel to about this length
+    constexpr double kVanishedNormal = 1e-3;
+    if (len.minCoeff() < kVanishedNormal)
+      out.normals.resize(0, 3);
+    else
+      out.normals.array().colwise() /= len.array();
+  }
+  return out;
+}
+
+Eigen::MatrixX3d estimate_normals(const Eigen::MatrixX3d& P, int k, int threads) {
+  if (k < 3)
+    throw std::invalid_argument("normal estimation: need at least 3 neighbours");
+  if (P.rows() <= k)
+    throw std::invalid_argument("normal estimation: need more than " + std::to_string(k) +
+                                " points, got " + std::to_string(P.rows()));
+  PointCloud c;
+  c.points = P;
+  const Eigen::Vector3d o = centre(P);
+  pcl::NormalEstimationOMP<pcl::PointNormal, pcl::Normal> ne(
+      static_cast<unsigned>(detail::resolve_threads(threads)));
+  ne.setInputCloud(to_pcl(c, o));
+  ne.setSearchMethod(std::make_shared<pcl::search::KdTree<pcl::PointNormal>>());
+  ne.setKSearch(k);
+  pcl::PointCloud<pcl::Normal> n;
+  ne.compute(n);
+  Eigen::MatrixX3d N(P.rows(), 3);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const pcl::Normal& q = n[static_cast<size_t>(i)];
+    Eigen::Vector3d v(q.normal_x, q.normal_y, q.normal_z);
+    // PCL leaves NaN where the neighbourhood is degenerate (all neighbours on one line)
+    N.row(i) = std::isfinite(v.squaredNorm()) && v.norm() > 0 ? v.normalized().transpose()
+                                                              : Eigen::RowVector3d(0, 0, 1);
+  }
+  return N;
+}
+
+} // namespace interlin

@@ -1,0 +1,387 @@
+// Ohtake et al. 2003 (multi-level partition of unity implicits): the adaptive octree of local
+// fits (cloud_implicit.h).
+#include "interlin/reconstruction/clouds/cloud_implicit.h"
+
+#include "local_fit.h"
+#include "nearest_neighbours.h"
+
+#include "interlin/reconstruction/clouds/noise_level.h"
+#include "interlin/reconstruction/meshing/parallel_for.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace interlin {
+
+using Eigen::Index;
+using Eigen::Vector3d;
+
+namespace {
+
+// A fit is accepted when its rms distance to the cell's points is at most kAcceptRms sigma and
+// the largest at most kAcceptMax sigma: the misfit is then noise, not shape (4 sigma: Gaussian
+// noise exceeds it at 6e-5 of the points).
+constexpr double kAcceptRms = 1.5, kAcceptMax = 4.0;
+// Floor of sigma relative to the root cube: noise-free input still stops refining at round-off.
+constexpr double kSigmaFloor = 1e-6;
+// One sheet when the normals of (nearly) all points lie within 60 degrees of their mean: a
+// quadratic height function then has slopes up to tan 60 = 1.7.
+const double kSheetCos = 0.5;
+constexpr double kStrayWeight = 0.05; // weight fraction of normals outside the cone tolerated
+// Curvature coefficients are damped by this ridge (in coordinates scaled by the ball radius) so
+// that points along one line (a single scan line through a cell) give a cylinder, not garbage.
+constexpr double kRidge = 1e-3;
+constexpr int kQuadricPoints = 10; // a sheet with fewer points is a plane
+// Points of the cell's min_points nearest whose normal is within 60 degrees of the nearest
+// point's normal form the plane of a far cell (not the wall opposite).
+
+struct Points {
+  const Eigen::MatrixX3d& P;
+  const Eigen::MatrixX3d& N;
+};
+
+Eigen::Matrix3d frame_for(const Vector3d& n) {
+  const Vector3d a = std::abs(n(0)) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
+  const Vector3d t1 = n.cross(a).normalized(), t2 = n.cross(t1);
+  Eigen::Matrix3d F;
+  F.row(0) = t1.transpose();
+  F.row(1) = t2.transpose();
+  F.row(2) = n.transpose();
+  return F;
+}
+
+// Weighted least-squares height function over the points idx (weights w) in the frame of their
+// mean normal; `scale` (the ball radius) normalises the coordinates. False when degenerate.
+bool fit_sheet(const Points& pts, const std::vector<int>& idx, const std::vector<double>& w,
+               double scale, bool quadric, HeightSheet& s) {
+  Vector3d m = Vector3d::Zero(), o = Vector3d::Zero();
+  double sw = 0;
+  for (size_t j = 0; j < idx.size(); ++j) {
+    m += w[j] * pts.N.row(idx[j]).transpose();
+    o += w[j] * pts.P.row(idx[j]).transpose();
+    sw += w[j];
+  }
+  if (!(sw > 0) || !(m.norm() > 1e-9 * sw))
+    return false;
+  s.origin = o / sw;
+  s.frame = frame_for(m.normalized());
+  const int np = quadric && int(idx.size()) >= kQuadricPoints ? 6 : 3;
+  Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  for (size_t j = 0; j < idx.size(); ++j) {
+    const Vector3d l = s.frame * (pts.P.row(idx[j]).transpose() - s.origin) / scale;
+    Eigen::Matrix<double, 6, 1> phi;
+    if (np == 6)
+      phi << l(0) * l(0), l(0) * l(1), l(1) * l(1), l(0), l(1), 1;
+    else
+      phi << l(0), l(1), 1, 0, 0, 0;
+    M += w[j] * phi * phi.transpose();
+    b += w[j] * phi * l(2);
+  }
+  for (int k = 0; k < 6; ++k)
+    M(k, k) += (k >= np ? 1.0 : (np == 6 && k < 3 ? kRidge : 1e-12)) * sw;
+  const Eigen::Matrix<double, 6, 1> x = M.ldlt().solve(b);
+  if (!x.allFinite())
+    return false;
+  s.c = np == 6 ? std::array<double, 6>{x(0) / scale, x(1) / scale, x(2) / scale,
+                                        x(3),         x(4),         x(5) * scale}
+                : std::array<double, 6>{0, 0, 0, x(0), x(1), x(2) * scale};
+  return true;
+}
+
+// Splits the points idx into two groups by normal direction (2-means on the sphere, seeded by
+// the normal farthest from the mean and the one farthest from that); a and b receive positions
+// in idx.
+void split_by_normal(const Points& pts, const std::vector<int>& idx, const Vector3d& mean,
+                     std::vector<size_t>& a, std::vector<size_t>& b) {
+  auto n = [&](size_t j) -> Vector3d { return pts.N.row(idx[j]).transpose(); };
+  size_t s0 = 0, s1 = 0;
+  for (size_t j = 0; j < idx.size(); ++j)
+    if (n(j).dot(mean) < n(s0).dot(mean))
+      s0 = j;
+  for (size_t j = 0; j < idx.size(); ++j)
+    if (n(j).dot(n(s0)) < n(s1).dot(n(s0)))
+      s1 = j;
+  Vector3d ca = n(s0), cb = n(s1);
+  for (int it = 0; it < 8; ++it) {
+    a.clear();
+    b.clear();
+    Vector3d sa = Vector3d::Zero(), sb = Vector3d::Zero();
+    for (size_t j = 0; j < idx.size(); ++j) {
+      if (n(j).dot(ca) >= n(j).dot(cb)) {
+        a.push_back(j);
+        sa += n(j);
+      } else {
+        b.push_back(j);
+        sb += n(j);
+      }
+    }
+    if (a.empty() || b.empty() || sa.norm() == 0 || sb.norm() == 0)
+      return;
+    ca = sa.normalized();
+    cb = sb.normalized();
+  }
+}
+
+// Distances |Q| / |grad Q| of the points idx to the zero set of f: rms and max.
+void misfit(const LocalFit& f, const Points& pts, const std::vector<int>& idx, double& rms,
+            double& mx) {
+  double s2 = 0;
+  mx = 0;
+  for (int i : idx) {
+    Vector3d g;
+    const double q = detail::fit_value(f, pts.P.row(i).transpose(), &g);
+    const double d = std::abs(q) / std::max(g.norm(), 1e-12);
+    s2 += d * d;
+    mx = std::max(mx, d);
+  }
+  rms = idx.empty() ? 0 : std::sqrt(s2 / double(idx.size()));
+}
+
+std::vector<double> weights(const std::vector<double>& d2, double R) {
+  std::vector<double> w(d2.size());
+  for (size_t j = 0; j < d2.size(); ++j)
+    w[j] = detail::wendland(std::sqrt(d2[j]) / R);
+  return w;
+}
+
+// One or two sheets through the points idx (weights w) of a cell whose ball has radius R.
+bool fit_cell(const Points& pts, const std::vector<int>& idx, const std::vector<double>& w,
+              double R, LocalFit& f) {
+  Vector3d m = Vector3d::Zero();
+  double sw = 0;
+  for (size_t j = 0; j < idx.size(); ++j) {
+    m += w[j] * pts.N.row(idx[j]).transpose();
+    sw += w[j];
+  }
+  double stray = 0;
+  if (m.norm() > 0) {
+    m.normalize();
+    for (size_t j = 0; j < idx.size(); ++j)
+      if (pts.N.row(idx[j]).dot(m) < kSheetCos)
+        stray += w[j];
+  }
+  if (m.norm() > 0 && stray <= kStrayWeight * sw) {
+    f.sheets = 1;
+    return fit_sheet(pts, idx, w, R, true, f.sheet[0]);
+  }
+  std::vector<size_t> a, b;
+  split_by_normal(pts, idx, m, a, b);
+  if (a.size() < 3 || b.size() < 3)
+    return false;
+  std::vector<int> ia, ib;
+  std::vector<double> wa, wb;
+  for (size_t j : a)
+    ia.push_back(idx[j]), wa.push_back(w[j]);
+  for (size_t j : b)
+    ib.push_back(idx[j]), wb.push_back(w[j]);
+  f.sheets = 2;
+  if (!fit_sheet(pts, ia, wa, R, true, f.sheet[0]) || !fit_sheet(pts, ib, wb, R, true, f.sheet[1]))
+    return false;
+  // Each group inside the other's sheet: a thin wall or a convex edge (conjunction); outside: a
+  // concave edge (disjunction).
+  double inside = 0;
+  for (int i : ib)
+    inside +=
+        detail::sheet_value(f.sheet[0], pts.P.row(i).transpose(), nullptr) / double(ib.size());
+  for (int i : ia)
+    inside +=
+        detail::sheet_value(f.sheet[1], pts.P.row(i).transpose(), nullptr) / double(ia.size());
+  f.conjunction = inside >= 0;
+  return true;
+}
+
+// A cell with fewer than min_points points in its ball takes its min_points nearest points
+// (weights over a ball reaching past the farthest). Near the surface (its ball holds a point)
+// they are fitted like any cell; far from it, only those facing like the nearest point (not the
+// wall opposite) give a plane: Hoppe's signed distance to the nearest tangent plane, which keeps
+// its sign far away where a quadric would curve back.
+bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k, LocalFit& f) {
+  std::vector<int> idx;
+  std::vector<double> d2;
+  index.knn(f.centre, k, idx, d2);
+  if (d2.front() < f.radius * f.radius) { // the support ball holds a point
+    const double R = 1.5 * std::sqrt(d2.back());
+    if (fit_cell(pts, idx, weights(d2, R), R, f))
+      return false;
+  }
+  const Vector3d n0 = pts.N.row(idx[0]).transpose();
+  std::vector<int> keep;
+  std::vector<double> kd2;
+  for (size_t j = 0; j < idx.size(); ++j)
+    if (pts.N.row(idx[j]).dot(n0) >= kSheetCos) {
+      keep.push_back(idx[j]);
+      kd2.push_back(d2[j]);
+    }
+  const double R = 1.5 * std::sqrt(kd2.back()) + 1e-300;
+  f.sheets = 1;
+  if (!fit_sheet(pts, keep, weights(kd2, R), R, false, f.sheet[0])) {
+    f.sheet[0].origin = pts.P.row(idx[0]).transpose(); // the tangent plane of the nearest point
+    f.sheet[0].frame = frame_for(n0);
+    f.sheet[0].c = {};
+  }
+  return true;
+}
+
+struct Cell {
+  int level = 0;
+  Eigen::Array3i ijk = Eigen::Array3i::Zero();
+  int child = -1; // first of 8 children
+  LocalFit fit;
+  bool far = false, split = false;
+};
+
+// Fits cell c; decides whether it is split.
+void process(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
+             const CloudFitOptions& o, const Vector3d& origin, double root, double sigma) {
+  const double side = root / double(1 << c.level);
+  LocalFit& f = c.fit;
+  f.level = c.level;
+  f.cell = c.ijk;
+  f.centre = origin + side * (c.ijk.cast<double>() + 0.5).matrix();
+  f.radius = o.support * side * std::sqrt(3.0);
+  const double R = o.fit_ball * side * std::sqrt(3.0);
+  std::vector<int> idx;
+  std::vector<double> d2;
+  index.radius(f.centre, R, idx, d2);
+  if (int(idx.size()) < o.min_points) {
+    c.far = fit_sparse(pts, index, o.min_points, f);
+    return;
+  }
+  const bool ok = fit_cell(pts, idx, weights(d2, R), R, f);
+  double rms = 0, mx = 0;
+  if (ok)
+    misfit(f, pts, idx, rms, mx);
+  const bool accepted = ok && rms <= kAcceptRms * sigma && mx <= kAcceptMax * sigma;
+  // A ball of half the radius holds about a quarter of a surface's points: children get
+  // min_points each only when the cell has kSplitShare times as many.
+  constexpr int kSplitShare = 4;
+  c.split = !accepted && c.level < o.max_depth && int(idx.size()) >= kSplitShare * o.min_points;
+  if (!ok && !c.split) // no usable fit and no refinement left: the nearest points' fit
+    c.far = fit_sparse(pts, index, o.min_points, f);
+}
+
+// Z-order (Morton) key of a leaf's cell at the resolution of level `depth` (<= 21): leaves sorted
+// by it lie near their neighbours in memory, which the evaluator's loops over nearby balls like.
+std::uint64_t morton(const LocalFit& f, int depth) {
+  std::uint64_t key = 0;
+  for (int a = 0; a < 3; ++a) {
+    const std::uint64_t v = std::uint64_t(f.cell(a)) << (depth - f.level);
+    for (int b = 0; b < depth; ++b)
+      key |= ((v >> b) & 1u) << (3 * b + a);
+  }
+  return key;
+}
+
+// Negates F: each sheet's Q -> -Q, and -(a AND b) = (-a) OR (-b).
+void negate(CloudImplicit& m) {
+  for (LocalFit& f : m.fits) {
+    for (int s = 0; s < f.sheets; ++s) {
+      HeightSheet& h = f.sheet[static_cast<size_t>(s)];
+      h.frame.row(2) *= -1;
+      for (double& c : h.c)
+        c = -c;
+    }
+    f.conjunction = !f.conjunction;
+  }
+}
+
+} // namespace
+
+CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
+                                 CloudFitInfo* info_out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!c.has_normals())
+    throw std::invalid_argument("cloud implicit: the cloud needs oriented normals");
+  if (o.min_points < 3 || o.max_depth < 1 || o.max_depth > 20 || !(o.support > 0.5) ||
+      !(o.fit_ball > 0) || !(o.noise >= 0))
+    throw std::invalid_argument("cloud implicit: bad options");
+  if (c.points.rows() < o.min_points)
+    throw std::invalid_argument("cloud implicit: need at least " + std::to_string(o.min_points) +
+                                " points");
+  CloudFitInfo info;
+  const Points pts{c.points, c.normals};
+  const Vector3d lo = c.points.colwise().minCoeff(), hi = c.points.colwise().maxCoeff();
+  const double diag = (hi - lo).norm();
+  CloudImplicit m;
+  m.support = o.support;
+  // kBoxMargin: the function's box reaches this fraction of the diagonal beyond the points, room
+  // for the surface between and around the outermost points
+  constexpr double kBoxMargin = 0.05;
+  m.box = Eigen::AlignedBox3d(lo.array() - kBoxMargin * diag, hi.array() + kBoxMargin * diag);
+  m.size = 1.25 * (hi - lo).maxCoeff() + 2 * kBoxMargin * diag;
+  m.origin = 0.5 * (lo + hi) - Vector3d::Constant(0.5 * m.size);
+  info.noise_estimated = !(o.noise > 0);
+  info.noise = o.noise > 0 ? o.noise : estimate_noise(c.points);
+  const double sigma = std::max(info.noise, kSigmaFloor * m.size);
+
+  const detail::NeighbourIndex index(c.points);
+  std::vector<Cell> cells(1);
+  size_t begin = 0;
+  for (int level = 0; begin < cells.size(); ++level) {
+    const size_t end = cells.size();
+    detail::parallel_for(
+        static_cast<long>(end - begin), detail::resolve_threads(o.threads), [&](long t, int) {
+          process(cells[begin + static_cast<size_t>(t)], pts, index, o, m.origin, m.size, sigma);
+        });
+    for (size_t i = begin; i < end; ++i) {
+      if (!cells[i].split)
+        continue;
+      cells[i].child = static_cast<int>(cells.size());
+      for (int oc = 0; oc < 8; ++oc) {
+        Cell ch;
+        ch.level = level + 1;
+        ch.ijk = 2 * cells[i].ijk + Eigen::Array3i(oc & 1, (oc >> 1) & 1, (oc >> 2) & 1);
+        cells.push_back(ch);
+      }
+    }
+    info.depth = level;
+    if (o.progress)
+      o.progress("octree level " + std::to_string(level) + ": " + std::to_string(end - begin) +
+                 " cells");
+    begin = end;
+  }
+  for (const Cell& cell : cells)
+    if (cell.child < 0) {
+      m.fits.push_back(cell.fit);
+      info.two_sheet_leaves += cell.fit.sheets == 2;
+      info.far_leaves += cell.far;
+    }
+  std::sort(m.fits.begin(), m.fits.end(), [&](const LocalFit& a, const LocalFit& b) {
+    return morton(a, info.depth) < morton(b, info.depth);
+  });
+  info.cells = static_cast<long>(cells.size());
+  info.leaves = static_cast<long>(m.fits.size());
+
+  // Outside is negative: decided at the root cube's corners (far from any closed surface).
+  ImplicitFunction F = cloud_implicit_function(std::make_shared<const CloudImplicit>(m));
+  Points3 corners(8, 3);
+  for (int k = 0; k < 8; ++k)
+    corners.row(k) = (m.origin + m.size * Vector3d(k & 1, (k >> 1) & 1, (k >> 2) & 1)).transpose();
+  Eigen::VectorXd fc(8);
+  F.value(corners, fc);
+  if ((fc.array() > 0).count() > 4) {
+    negate(m);
+    info.flipped = true;
+    F = cloud_implicit_function(std::make_shared<const CloudImplicit>(m));
+  }
+  // How far the zero set passes from the points (first-order distance |F| / |grad F|).
+  Eigen::VectorXd v(c.points.rows());
+  Points3 G(c.points.rows(), 3);
+  F.gradient(c.points, v, G);
+  const Eigen::ArrayXd d = v.array().abs() / G.rowwise().norm().array().max(1e-12);
+  info.rms_distance = std::sqrt(d.square().mean());
+  info.max_distance = d.maxCoeff();
+  info.within_3_sigma = double((d <= 3 * sigma).count()) / double(d.size());
+  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (info_out)
+    *info_out = info;
+  return m;
+}
+
+} // namespace interlin

@@ -1,0 +1,71 @@
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
+
+#include "interlin/reconstruction/clouds/cloud_checks.h"
+#include "interlin/reconstruction/clouds/cloud_filters.h"
+#include "interlin/reconstruction/clouds/orient_normals.h"
+#include "interlin/reconstruction/io/input_error.h"
+
+#include <stdexcept>
+
+namespace interlin {
+
+namespace {
+
+// Orientation disagreement (orient_normals.h) below which a file's normals count as oriented:
+// consistent normals give about 0, a noisy scan's estimates a few tenths of a percent near
+// edges, random signs 0.5.
+constexpr double kOrientedDisagreement = 0.01;
+
+} // namespace
+
+PointCloud prepare_cloud(const std::string& path, const PointCloud& cloud,
+                         const CloudPrepOptions& o, CloudPrepReport* report_out,
+                         std::vector<std::string>* notes) {
+  if (o.outlier_neighbours < 0 || !(o.outlier_ratio > 0) || !(o.voxel >= 0) ||
+      o.normal_neighbours < 3 || o.orient_neighbours < 1)
+    throw std::invalid_argument("prepare_cloud: bad options");
+  auto say = [&](const std::string& s) {
+    if (o.progress)
+      o.progress(s);
+  };
+  CloudPrepReport r;
+  r.read = cloud.points.rows();
+  PointCloud c = check_cloud(path, cloud, notes);
+  r.distinct = c.points.rows();
+  if (o.outlier_neighbours > 0) {
+    say("statistical outlier removal (k = " + std::to_string(o.outlier_neighbours) + ")");
+    c = remove_statistical_outliers(c, o.outlier_neighbours, o.outlier_ratio, &r.outliers);
+  }
+  if (o.voxel > 0) {
+    say("voxel-grid downsampling");
+    c = voxel_downsample(c, o.voxel);
+  }
+  c = check_cloud(path, c); // what the filters left must still bound a volume
+  r.kept = c.points.rows();
+  if (o.normals == NormalSource::file && !c.has_normals())
+    throw_input_error(path, 0,
+                      "the file has no normals (fields nx, ny, nz); estimate them instead");
+  if (o.normals == NormalSource::estimate || !c.has_normals()) {
+    say("normal estimation (k = " + std::to_string(o.normal_neighbours) + ")");
+    c.normals = estimate_normals(c.points, o.normal_neighbours, o.threads);
+    r.normals_estimated = true;
+  } else if (o.normals == NormalSource::automatic) {
+    r.disagreement = orientation_disagreement(c.points, c.normals, o.orient_neighbours);
+    r.normals_reoriented = r.disagreement > kOrientedDisagreement;
+    if (r.normals_reoriented && notes)
+      notes->push_back(path + ": the file's normals are not consistently oriented (" +
+                       std::to_string(100 * r.disagreement) +
+                       " % of neighbour pairs disagree): re-oriented");
+  }
+  if (r.normals_estimated || r.normals_reoriented) {
+    say("normal orientation (k = " + std::to_string(o.orient_neighbours) + ")");
+    OrientationInfo info;
+    orient_normals(c.points, c.normals, o.orient_neighbours, &info);
+    r.components = info.components;
+  }
+  if (report_out)
+    *report_out = r;
+  return c;
+}
+
+} // namespace interlin

@@ -1,0 +1,172 @@
+// Cloud preparation: degenerate clouds, outliers, downsampling, normals, orientation, noise.
+
+#include "interlin/reconstruction/clouds/cloud_checks.h"
+#include "interlin/reconstruction/clouds/cloud_filters.h"
+#include "interlin/reconstruction/clouds/noise_level.h"
+#include "interlin/reconstruction/clouds/orient_normals.h"
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
+#include "interlin/reconstruction/io/input_error.h"
+
+#include "support/test_clouds.h"
+
+#include <catch2/catch.hpp>
+
+#include <random>
+
+using namespace interlin;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+
+namespace {
+
+std::string check_error(const PointCloud& c) {
+  try {
+    check_cloud("c.xyz", c);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+PointCloud points(const Eigen::MatrixX3d& P) {
+  PointCloud c;
+  c.points = P;
+  return c;
+}
+
+// Number of normals pointing into the body (against the exact outward normals).
+long wrong_signs(const Eigen::MatrixX3d& N, const Eigen::MatrixX3d& truth) {
+  return static_cast<long>(((N.array() * truth.array()).rowwise().sum() < 0).count());
+}
+
+} // namespace
+
+TEST_CASE("degenerate clouds: one clear line each", "[clouds][checks]") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Eigen::MatrixX3d plane(200, 3), line(200, 3), same(200, 3);
+  for (int i = 0; i < 200; ++i) {
+    const double a = U(rng), b = U(rng);
+    plane.row(i) << a, b, 0.5 * a - 0.25 * b + 3; // a tilted plane
+    line.row(i) << a, 2 * a, -a;
+    same.row(i) << 1, 2, 3;
+  }
+  CHECK_THAT(check_error(points(plane)),
+             StartsWith("c.xyz: all 200 points lie on one plane (spread"));
+  CHECK_THAT(check_error(points(line)), StartsWith("c.xyz: all 200 points lie on one line"));
+  CHECK_THAT(check_error(points(same)),
+             StartsWith("c.xyz: only 1 distinct point(s) (after removing 199 repeated point(s)): "
+                        "fitting a surface needs at least 20"));
+  CHECK_THAT(check_error(points(plane.topRows(3))),
+             StartsWith("c.xyz: only 3 distinct point(s): fitting a surface needs at least 20"));
+  // repeated points are removed, not fatal
+  const PointCloud s = test::sample_shape({test::Shape::sphere}, 100, 0, 1);
+  PointCloud twice = s;
+  twice.points = Eigen::MatrixX3d(200, 3);
+  twice.points << s.points, s.points;
+  twice.normals = Eigen::MatrixX3d(200, 3);
+  twice.normals << s.normals, s.normals;
+  std::vector<std::string> notes;
+  const PointCloud d = check_cloud("c.xyz", twice, &notes);
+  CHECK(d.points == s.points);
+  CHECK(d.normals == s.normals);
+  CHECK_THAT(notes.at(0), Contains("100 repeated point(s) removed"));
+}
+
+TEST_CASE("statistical outlier removal drops scattered points, keeps the surface",
+          "[clouds][filters]") {
+  PointCloud c = test::sample_shape({test::Shape::sphere}, 4000, 0, 2);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> U(-3, 3);
+  const int k = 40;
+  c.points.conservativeResize(4000 + k, 3);
+  c.normals.conservativeResize(4000 + k, 3);
+  for (int i = 0; i < k; ++i) {
+    Eigen::Vector3d p(U(rng), U(rng), U(rng));
+    if (p.norm() < 1.5) // keep the outliers well off the sphere
+      p *= 1.5 / p.norm() + 0.5;
+    c.points.row(4000 + i) = p.transpose();
+    c.normals.row(4000 + i) << 1, 0, 0;
+  }
+  Eigen::Index removed = 0;
+  const PointCloud f = remove_statistical_outliers(c, 16, 3.0, &removed);
+  CHECK(f.points.rows() == 4000 + k - removed);
+  CHECK((f.points.rowwise().norm().array() - 1).abs().maxCoeff() < 1e-12); // no outlier left
+  CHECK(removed <= k + 4000 / 100); // and at most 1 % of the surface points
+}
+
+TEST_CASE("voxel downsampling: one centroid per occupied voxel", "[clouds][filters]") {
+  const PointCloud c = test::sample_shape({test::Shape::sphere}, 20000, 0, 5);
+  const PointCloud f = voxel_downsample(c, 0.1);
+  CHECK(f.points.rows() < 2000);
+  CHECK(f.points.rows() > 1000); // about area / leaf^2 = 4 pi / 0.01
+  // centroids of points within a voxel lie near the sphere (inside the chord, < leaf^2 / 2)
+  CHECK((f.points.rowwise().norm().array() - 1).abs().maxCoeff() < 0.1);
+  REQUIRE(f.has_normals());
+  CHECK(((f.normals.array() * f.points.array()).rowwise().sum() > 0.9).all());
+  CHECK_THROWS_WITH(voxel_downsample(c, 1e-9), Contains("use at least"));
+}
+
+TEST_CASE("normals: PCL estimates, orientation outward on spheres, tori and thin walls",
+          "[clouds][normals]") {
+  for (const test::Shape shape : {test::Shape::sphere, test::Shape::torus, test::Shape::ellipsoid})
+    for (const double sigma : {0.0, 0.003}) {
+      const PointCloud c = test::sample_shape({shape}, 6000, sigma, 7);
+      INFO("shape " << int(shape) << " sigma " << sigma);
+      Eigen::MatrixX3d N = estimate_normals(c.points, 16);
+      // unoriented estimates are close to the true normals up to sign
+      const Eigen::ArrayXd cosine = (N.array() * c.normals.array()).rowwise().sum().abs();
+      CHECK((cosine > 0.9).count() >= 0.97 * 6000);
+      // PCL turns them towards a viewpoint; random signs make the orientation do the work
+      std::mt19937 rng(8);
+      for (Eigen::Index i = 0; i < N.rows(); ++i)
+        if (rng() % 2)
+          N.row(i) *= -1;
+      CHECK(orientation_disagreement(c.points, N, 10) > 0.3);
+      OrientationInfo info;
+      orient_normals(c.points, N, 10, &info);
+      CHECK(info.components == 1);
+      // the thin wall's rim (0.15 thick) is where propagation could cross to the other side
+      CHECK(wrong_signs(N, c.normals) <= 6000 / 500);
+      CHECK(orientation_disagreement(c.points, N, 10) < 0.005);
+    }
+}
+
+TEST_CASE("noise estimate recovers sigma within 25 %", "[clouds][noise]") {
+  for (const test::Shape shape : {test::Shape::sphere, test::Shape::torus})
+    for (const double sigma : {0.002, 0.005, 0.01}) {
+      const PointCloud c = test::sample_shape({shape}, 20000, sigma, 11);
+      INFO("shape " << int(shape) << " sigma " << sigma);
+      CHECK(estimate_noise(c.points) == Approx(sigma).epsilon(0.25));
+    }
+  // noise-free: the quadric's approximation error only, far below the spacing (~0.025)
+  CHECK(estimate_noise(test::sample_shape({test::Shape::sphere}, 20000, 0, 12).points) < 1e-4);
+}
+
+TEST_CASE("prepare_cloud: normals from the file kept when consistent, else re-oriented",
+          "[clouds][prepare]") {
+  PointCloud c = test::sample_shape({test::Shape::torus}, 5000, 0, 13);
+  CloudPrepReport r;
+  PointCloud p = prepare_cloud("t.xyzn", c, {}, &r);
+  CHECK_FALSE(r.normals_estimated);
+  CHECK_FALSE(r.normals_reoriented);
+  CHECK(r.outliers <= 50);
+  // flip a third of the file's normals: they are re-oriented, all outward again
+  for (Eigen::Index i = 0; i < c.points.rows(); i += 3)
+    c.normals.row(i) *= -1;
+  std::vector<std::string> notes;
+  CloudPrepOptions o;
+  o.outlier_neighbours = 0;
+  p = prepare_cloud("t.xyzn", c, o, &r, &notes);
+  CHECK(r.normals_reoriented);
+  CHECK_THAT(notes.at(0), Contains("not consistently oriented"));
+  const PointCloud truth = test::sample_shape({test::Shape::torus}, 5000, 0, 13);
+  CHECK(wrong_signs(p.normals, truth.normals) == 0);
+  // no normals at all: estimated and oriented
+  c.normals.resize(0, 3);
+  p = prepare_cloud("t.xyz", c, o, &r);
+  CHECK(r.normals_estimated);
+  CHECK(wrong_signs(p.normals, truth.normals) <= 5);
+  o.normals = NormalSource::file;
+  CHECK_THROWS_AS(prepare_cloud("t.xyz", c, o), InputError);
+}
