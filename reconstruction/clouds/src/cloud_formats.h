@@ -1,5 +1,5 @@
 #pragma once
-// Private to read_point_cloud: the readers of each format and the PCL decoder of binary payloads.
+// Private to read_point_cloud: the parsers of each format and the decoding of binary values.
 
 #include "interlin/reconstruction/clouds/point_cloud.h"
 
@@ -22,7 +22,7 @@ struct CloudRows {
   Eigen::Index size() const { return static_cast<Eigen::Index>(xyz.size() / 3); }
 };
 
-// Each reader gets the whole file as `text` and throws InputError lines naming `path`.
+// Each parser gets the whole file as `text` and throws InputError lines naming `path`.
 void read_pcd(const std::string& path, std::string_view text, CloudRows& rows,
               std::vector<std::string>& notes);
 void read_ply(const std::string& path, std::string_view text, CloudRows& rows,
@@ -30,11 +30,9 @@ void read_ply(const std::string& path, std::string_view text, CloudRows& rows,
 void read_xyz(const std::string& path, std::string_view text, bool normals_expected,
               CloudRows& rows, std::vector<std::string>& notes);
 
-// Decodes the binary payload of a validated .pcd or .ply file with PCL and returns the named
-// fields (PCL's names: x, y, z, normal_x, ...) as columns of doubles, one row per point in file
-// order. Throws InputError "PATH: ..." when PCL rejects the file or a field is missing.
-Eigen::MatrixXd pcl_binary_fields(const std::string& path, bool ply,
-                                  const std::vector<std::string>& names);
+// The value of one binary field at p: `type` 'F' (float), 'I' (signed) or 'U' (unsigned) of
+// `size` bytes (1, 2, 4, 8; floats 4 or 8), little-endian unless `big_endian`.
+double binary_value(const char* p, char type, int size, bool big_endian = false);
 
 // Bytes a binary payload of `points` records of `record` bytes needs, and the InputError on line
 // `line` when the file holds fewer (the header's counts are never trusted for allocation).

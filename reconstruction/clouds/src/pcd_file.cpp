@@ -1,10 +1,12 @@
-// PCD files (PCL's Point Cloud Data format, v0.5-v0.7): the header is parsed and validated here,
-// line by line; ASCII data is parsed strictly here; binary and binary_compressed payloads are
-// decoded by PCL once the header has been checked against the file size.
+// PCD files (PCL's Point Cloud Data format, v0.5-v0.7): the header parsed and validated line by
+// line, ASCII data parsed strictly, binary records decoded after the header has been checked
+// against the payload size; binary_compressed blocks are decompressed by PCL's LZF codec.
 #include "cloud_formats.h"
 
 #include "interlin/reconstruction/io/csv_fields.h"
 #include "interlin/reconstruction/io/input_error.h"
+
+#include <pcl/io/lzf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -255,48 +257,75 @@ void read_ascii(const std::string& path, std::string_view text, const PcdHeader&
                           std::to_string(read) + " points");
 }
 
+// Byte offset of each field within a record (binary) or within the field-major block of all
+// points (binary_compressed, where each field's values for all points are contiguous).
+std::vector<size_t> byte_offsets(const PcdHeader& h, bool field_major) {
+  std::vector<size_t> o(h.fields.size());
+  size_t k = 0;
+  for (size_t i = 0; i < h.fields.size(); ++i) {
+    o[i] = k;
+    const size_t bytes =
+        static_cast<size_t>(h.fields[i].size) * static_cast<size_t>(h.fields[i].count);
+    k += field_major ? bytes * static_cast<size_t>(h.points) : bytes;
+  }
+  return o;
+}
+
+// The binary_compressed payload decompressed (PCL's LZF codec), after checking its two sizes
+// against the header and the file.
+std::string decompress(const std::string& path, std::string_view text, const PcdHeader& h) {
+  const size_t available = text.size() - h.payload;
+  if (available < 8)
+    throw_input_error(path, h.data_line, "binary_compressed data lacks its 8-byte size header");
+  std::uint32_t sz[2]; // compressed and uncompressed sizes, little-endian
+  for (int k = 0; k < 2; ++k)
+    sz[k] = static_cast<std::uint32_t>(binary_value(text.data() + h.payload + 4 * k, 'U', 4));
+  require_payload(path, h.data_line, "the compressed block", 1.0, double(sz[0]) + 8, available);
+  const double expected = double(h.points) * double(h.record());
+  if (double(sz[1]) != expected)
+    throw_input_error(path, h.data_line,
+                      "binary_compressed data decompresses to " + std::to_string(sz[1]) +
+                          " bytes, POINTS x record size is " + std::to_string(expected));
+  // LZF expands at most 88 times (a 3-byte back reference copies 264 bytes): a larger claim is a
+  // corrupt header, refused before allocating it.
+  constexpr double kLzfMaxExpansion = 88;
+  if (double(sz[1]) > kLzfMaxExpansion * double(sz[0]) + 64)
+    throw_input_error(path, h.data_line,
+                      "binary_compressed data claims " + std::to_string(sz[1]) + " bytes from " +
+                          std::to_string(sz[0]) +
+                          " compressed bytes (LZF expands at most 88 times)");
+  std::string out(sz[1], '\0');
+  if (sz[1] > 0 &&
+      pcl::lzfDecompress(text.data() + h.payload + 8, sz[0], out.data(), sz[1]) != sz[1])
+    throw_input_error(path, h.data_line, "binary_compressed data is corrupt (LZF)");
+  return out;
+}
+
 void read_binary(const std::string& path, std::string_view text, const PcdHeader& h,
                  CloudRows& rows, long& skipped) {
-  const size_t available = text.size() - h.payload;
-  const std::string what = "POINTS " + std::to_string(h.points);
-  if (h.data == "binary") {
-    require_payload(path, h.points_line, what, double(h.points), double(h.record()), available);
+  const bool compressed = h.data == "binary_compressed";
+  std::string block;
+  std::string_view data = text.substr(h.payload);
+  if (compressed) {
+    block = decompress(path, text, h);
+    data = block;
   } else {
-    // binary_compressed: two little-endian uint32 (compressed and uncompressed size), then LZF.
-    if (available < 8)
-      throw_input_error(path, h.data_line, "binary_compressed data lacks its 8-byte size header");
-    std::uint32_t sz[2];
-    std::memcpy(sz, text.data() + h.payload, 8);
-    require_payload(path, h.data_line, "the compressed block", 1.0, double(sz[0]) + 8, available);
-    if (double(sz[1]) != double(h.points) * double(h.record()))
-      throw_input_error(path, h.data_line,
-                        "binary_compressed data decompresses to " + std::to_string(sz[1]) +
-                            " bytes, POINTS x record size is " +
-                            std::to_string(double(h.points) * double(h.record())));
-    // LZF expands at most 88 times (a 3-byte back reference copies 264 bytes): a larger claim
-    // is a corrupt header, refused before PCL allocates it.
-    constexpr double kLzfMaxExpansion = 88;
-    if (double(sz[1]) > kLzfMaxExpansion * double(sz[0]) + 64)
-      throw_input_error(path, h.data_line,
-                        "binary_compressed data claims " + std::to_string(sz[1]) + " bytes from " +
-                            std::to_string(sz[0]) +
-                            " compressed bytes (LZF expands at most 88 times)");
+    require_payload(path, h.points_line, "POINTS " + std::to_string(h.points), double(h.points),
+                    double(h.record()), data.size());
   }
   bool normals = false;
-  wanted_fields(h, normals);
-  std::vector<std::string> names{"x", "y", "z"};
-  if (normals)
-    names.insert(names.end(), {"normal_x", "normal_y", "normal_z"});
-  const Eigen::MatrixXd F = pcl_binary_fields(path, false, names);
-  if (F.rows() != h.points)
-    throw_input_error(path, 0,
-                      "PCL decoded " + std::to_string(F.rows()) + " points, POINTS says " +
-                          std::to_string(h.points));
+  const std::vector<int> w = wanted_fields(h, normals);
   rows.with_normals = normals;
-  for (Eigen::Index i = 0; i < F.rows(); ++i) {
-    double v[6];
-    for (Eigen::Index c = 0; c < F.cols(); ++c)
-      v[c] = F(i, c);
+  const std::vector<size_t> off = byte_offsets(h, compressed);
+  const size_t record = h.record();
+  for (long i = 0; i < h.points; ++i) {
+    double v[6] = {0, 0, 0, 0, 0, 0};
+    for (size_t c = 0; c < w.size(); ++c) {
+      const PcdField& f = h.fields[static_cast<size_t>(w[c])];
+      const size_t at = compressed ? off[static_cast<size_t>(w[c])] + size_t(i) * size_t(f.size)
+                                   : size_t(i) * record + off[static_cast<size_t>(w[c])];
+      v[c] = binary_value(data.data() + at, f.type, f.size);
+    }
     if (skip_invalid(h, v)) {
       ++skipped;
       continue;
@@ -304,7 +333,8 @@ void read_binary(const std::string& path, std::string_view text, const PcdHeader
     for (int c = 0; c < 3; ++c)
       if (!std::isfinite(v[c]))
         throw_input_error(path, 0,
-                          "point " + std::to_string(i + 1) + " (binary data): " + names[c] +
+                          "point " + std::to_string(i + 1) + " (binary data): " +
+                              h.fields[static_cast<size_t>(w[static_cast<size_t>(c)])].name +
                               " is not a finite value (NaN and infinity are not allowed)");
     rows.add(v, v + 3);
   }

@@ -1,6 +1,7 @@
-// PLY files: the header is parsed and validated here; the vertex element of ASCII files is
-// parsed strictly here; binary payloads are decoded by PCL once the header has been checked
-// against the file size. Faces and other elements are ignored (a mesh's vertices are a cloud).
+// PLY files: the header parsed and validated; the vertex element of ASCII files parsed strictly;
+// binary payloads decoded with every read bounds-checked, after the header's counts have been
+// checked against the payload size. Faces and other elements are skipped (a mesh's vertices are
+// a cloud).
 #include "cloud_formats.h"
 
 #include "interlin/reconstruction/io/csv_fields.h"
@@ -15,8 +16,10 @@ namespace {
 
 struct PlyProperty {
   std::string name;
-  int size = 4;       // bytes of a scalar, or of the list items
-  int count_size = 0; // lists: bytes of the item count (0 for scalars)
+  int size = 4;          // bytes of a scalar, or of the list items
+  char type = 'F';       // 'F' float, 'I' signed, 'U' unsigned (binary_value)
+  int count_size = 0;    // lists: bytes of the item count (0 for scalars) ...
+  char count_type = 'U'; // ... and its type
 };
 
 struct PlyElement {
@@ -38,20 +41,24 @@ struct PlyHeader {
   long end_line = 0;
 };
 
-int type_size(std::string_view t) {
-  static const std::map<std::string, int, std::less<>> sizes{
-      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  const auto it = sizes.find(t);
-  return it == sizes.end() ? 0 : it->second;
+// Bytes and kind ('F', 'I', 'U') of a PLY type name; false for an unknown name.
+bool type_of(std::string_view t, int& size, char& kind) {
+  static const std::map<std::string, std::pair<int, char>, std::less<>> types{
+      {"char", {1, 'I'}},  {"uchar", {1, 'U'}},   {"int8", {1, 'I'}},   {"uint8", {1, 'U'}},
+      {"short", {2, 'I'}}, {"ushort", {2, 'U'}},  {"int16", {2, 'I'}},  {"uint16", {2, 'U'}},
+      {"int", {4, 'I'}},   {"uint", {4, 'U'}},    {"int32", {4, 'I'}},  {"uint32", {4, 'U'}},
+      {"float", {4, 'F'}}, {"float32", {4, 'F'}}, {"double", {8, 'F'}}, {"float64", {8, 'F'}}};
+  const auto it = types.find(t);
+  if (it == types.end())
+    return false;
+  size = it->second.first;
+  kind = it->second.second;
+  return true;
 }
 
-int checked_type(std::string_view t, const std::string& path, long line) {
-  const int s = type_size(t);
-  if (s == 0)
+void checked_type(std::string_view t, const std::string& path, long line, int& size, char& kind) {
+  if (!type_of(t, size, kind))
     throw_input_error(path, line, "unknown PLY property type '" + std::string(t) + "'");
-  return s;
 }
 
 PlyHeader parse_header(const std::string& path, std::string_view text) {
@@ -86,11 +93,13 @@ PlyHeader parse_header(const std::string& path, std::string_view text) {
         throw_input_error(path, n, "property before any element");
       PlyProperty p;
       if (t.size() == 5 && t[1] == "list") {
-        p.count_size = checked_type(t[2], path, n);
-        p.size = checked_type(t[3], path, n);
+        checked_type(t[2], path, n, p.count_size, p.count_type);
+        checked_type(t[3], path, n, p.size, p.type);
+        if (p.count_type == 'F')
+          throw_input_error(path, n, "a list's length type must be an integer type");
         p.name = std::string(t[4]);
       } else if (t.size() == 3) {
-        p.size = checked_type(t[1], path, n);
+        checked_type(t[1], path, n, p.size, p.type);
         p.name = std::string(t[2]);
       } else {
         throw_input_error(path, n, "property takes a type and a name (or list COUNT ITEM NAME)");
@@ -144,7 +153,8 @@ void read_ascii_vertices(const std::string& path, std::string_view text, const P
   std::vector<std::string_view> t;
   long before = 0; // instances of the elements before the vertex element (one line each)
   for (size_t e = 0; e < vertex; ++e)
-    before += h.elements[e].count;
+    if (!h.elements[e].props.empty())
+      before += h.elements[e].count;
   long read = 0;
   while (read < v.count && lines.next(line)) {
     const long number = h.end_line + lines.number();
@@ -186,9 +196,54 @@ void read_ascii_vertices(const std::string& path, std::string_view text, const P
                           " vertices, the file holds " + std::to_string(read));
 }
 
+// Reads binary element instances from `data` at `at`, bounds-checked against the payload.
+class BinaryCursor {
+public:
+  BinaryCursor(const std::string& path, std::string_view data, bool big)
+      : path_(path), data_(data), big_(big) {}
+  // Skips or reads one instance of e; values[p] receives scalar property p (lists skipped).
+  void instance(const PlyElement& e, long index, std::vector<double>* values) {
+    for (size_t p = 0; p < e.props.size(); ++p) {
+      const PlyProperty& q = e.props[p];
+      if (q.count_size == 0) {
+        const double v = value(q.size, q.type, e, index);
+        if (values)
+          (*values)[p] = v;
+        continue;
+      }
+      const double items = value(q.count_size, q.count_type, e, index);
+      if (!(items >= 0))
+        throw_input_error(path_, 0,
+                          "element " + e.name + " " + std::to_string(index + 1) +
+                              " (binary data): list " + q.name + " has a negative length");
+      need(items * q.size, e, index);
+      at_ += size_t(items) * size_t(q.size);
+    }
+  }
+
+private:
+  const std::string& path_;
+  std::string_view data_;
+  bool big_;
+  size_t at_ = 0;
+  void need(double bytes, const PlyElement& e, long index) const {
+    if (bytes > double(data_.size() - at_))
+      throw_input_error(path_, 0,
+                        "element " + e.name + " " + std::to_string(index + 1) +
+                            " (binary data): the file ends inside it");
+  }
+  double value(int size, char type, const PlyElement& e, long index) {
+    need(size, e, index);
+    const double v = binary_value(data_.data() + at_, type, size, big_);
+    at_ += size_t(size);
+    return v;
+  }
+};
+
 void read_binary_vertices(const std::string& path, std::string_view text, const PlyHeader& h,
                           size_t vertex, CloudRows& rows) {
-  // Smallest payload that can hold every element up to the vertices (lists counted empty).
+  // Smallest payload that can hold every element up to the vertices (lists counted empty):
+  // checked before anything is allocated from the counts.
   double need = 0;
   for (size_t e = 0; e <= vertex; ++e) {
     double record = 0;
@@ -201,23 +256,22 @@ void read_binary_vertices(const std::string& path, std::string_view text, const 
                   text.size() - h.payload);
   bool normals = false;
   const std::vector<int> w = wanted(path, v, normals);
-  std::vector<std::string> names{"x", "y", "z"};
-  if (normals)
-    names.insert(names.end(), {"normal_x", "normal_y", "normal_z"});
-  const Eigen::MatrixXd F = pcl_binary_fields(path, true, names);
-  if (F.rows() != v.count)
-    throw_input_error(path, 0,
-                      "PCL decoded " + std::to_string(F.rows()) +
-                          " vertices, the header declares " + std::to_string(v.count));
   rows.with_normals = normals;
-  for (Eigen::Index i = 0; i < F.rows(); ++i) {
-    double val[6];
-    for (Eigen::Index c = 0; c < F.cols(); ++c)
-      val[c] = F(i, c);
+  BinaryCursor cursor(path, text.substr(h.payload), h.format == "binary_big_endian");
+  for (size_t e = 0; e < vertex; ++e)
+    for (long i = 0; i < h.elements[e].count && !h.elements[e].props.empty(); ++i)
+      cursor.instance(h.elements[e], i, nullptr);
+  std::vector<double> values(v.props.size());
+  for (long i = 0; i < v.count; ++i) {
+    cursor.instance(v, i, &values);
+    double val[6] = {0, 0, 0, 0, 0, 0};
+    for (size_t c = 0; c < w.size(); ++c)
+      val[c] = values[static_cast<size_t>(w[c])];
     for (int c = 0; c < 3; ++c)
       if (!std::isfinite(val[c]))
         throw_input_error(path, 0,
-                          "vertex " + std::to_string(i + 1) + " (binary data): " + names[c] +
+                          "vertex " + std::to_string(i + 1) + " (binary data): " +
+                              v.props[static_cast<size_t>(w[static_cast<size_t>(c)])].name +
                               " is not a finite value (NaN and infinity are not allowed)");
     rows.add(val, val + 3);
   }

@@ -9,12 +9,37 @@
 #include "interlin/reconstruction/io/input_error.h"
 #include "interlin/reconstruction/io/points_csv.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 
 namespace interlin {
 
 namespace detail {
+
+double binary_value(const char* p, char type, int size, bool big_endian) {
+  char b[8];
+  std::memcpy(b, p, static_cast<size_t>(size));
+  if (big_endian)
+    std::reverse(b, b + size);
+  auto get = [&b](auto v) {
+    std::memcpy(&v, b, sizeof v);
+    return static_cast<double>(v);
+  };
+  if (type == 'F')
+    return size == 4 ? get(float{}) : get(double{});
+  if (type == 'I')
+    return size == 1   ? get(std::int8_t{})
+           : size == 2 ? get(std::int16_t{})
+           : size == 4 ? get(std::int32_t{})
+                       : get(std::int64_t{});
+  return size == 1   ? get(std::uint8_t{})
+         : size == 2 ? get(std::uint16_t{})
+         : size == 4 ? get(std::uint32_t{})
+                     : get(std::uint64_t{});
+}
 
 void require_payload(const std::string& path, long line, const std::string& what, double points,
                      double record, std::size_t available) {
@@ -136,35 +161,39 @@ bool is_point_cloud_file(const std::string& path) {
   return e == ".pcd" || e == ".ply" || e == ".xyz" || e == ".xyzn" || e == ".txt" || e == ".csv";
 }
 
-PointCloud read_point_cloud(const std::string& path, std::vector<std::string>* notes_out) {
+PointCloud read_point_cloud(const std::string& path, std::vector<std::string>* notes) {
+  if (!is_point_cloud_file(path))
+    throw_input_error(path, 0,
+                      "unknown point-cloud extension '" + lower_extension(path) +
+                          "' (use .pcd .ply .xyz .xyzn .txt .csv)");
+  return parse_point_cloud(read_input_file(path), path, notes);
+}
+
+PointCloud parse_point_cloud(std::string_view text, const std::string& path,
+                             std::vector<std::string>* notes_out) {
   std::vector<std::string> notes;
   const std::string ext = lower_extension(path);
-  PointCloud c;
+  detail::CloudRows rows;
   if (ext == ".csv") {
-    PointsAndNormals pn = read_points_normals_csv(path);
-    detail::CloudRows rows;
+    const PointsAndNormals pn = parse_points_normals_csv(text, path);
     rows.with_normals = pn.normals.rows() > 0;
     for (Eigen::Index i = 0; i < pn.points.rows(); ++i) {
       const Eigen::RowVector3d p = pn.points.row(i);
       const Eigen::RowVector3d q = rows.with_normals ? pn.normals.row(i) : p;
       rows.add(p.data(), q.data());
     }
-    c = to_cloud(path, rows, notes);
+  } else if (ext == ".pcd") {
+    detail::read_pcd(path, text, rows, notes);
+  } else if (ext == ".ply") {
+    detail::read_ply(path, text, rows, notes);
   } else if (is_point_cloud_file(path)) {
-    const std::string text = read_input_file(path);
-    detail::CloudRows rows;
-    if (ext == ".pcd")
-      detail::read_pcd(path, text, rows, notes);
-    else if (ext == ".ply")
-      detail::read_ply(path, text, rows, notes);
-    else
-      detail::read_xyz(path, text, ext == ".xyzn", rows, notes);
-    c = to_cloud(path, rows, notes);
+    detail::read_xyz(path, text, ext == ".xyzn", rows, notes);
   } else {
     throw_input_error(path, 0,
                       "unknown point-cloud extension '" + ext +
                           "' (use .pcd .ply .xyz .xyzn .txt .csv)");
   }
+  PointCloud c = to_cloud(path, rows, notes);
   if (notes_out)
     notes_out->insert(notes_out->end(), notes.begin(), notes.end());
   return c;

@@ -1,7 +1,7 @@
 // PLY and OBJ in full double precision (mesh_formats.h).
 #include "mesh_formats.h"
 
-#include "csv_fields.h"
+#include "interlin/reconstruction/io/csv_fields.h"
 
 #include "interlin/reconstruction/io/input_error.h"
 

@@ -31,8 +31,7 @@ std::array<int, N> find_columns(const std::vector<std::string_view>& f,
         if (col[c] >= 0)
           throw_input_error(path, line,
                             "column " + name + " appears twice in the header (fields " +
-                                std::to_string(col[c] + 1) + " and " + std::to_string(i + 1) +
-                                ")");
+                                std::to_string(col[c] + 1) + " and " + std::to_string(i + 1) + ")");
         col[c] = static_cast<int>(i);
       }
   }

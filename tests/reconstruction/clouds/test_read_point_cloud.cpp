@@ -7,7 +7,9 @@
 #include "support/test_support.h"
 
 #include <catch2/catch.hpp>
+#include <pcl/io/lzf.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -22,6 +24,15 @@ namespace {
 
 void write(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::string parse_error(const std::string& text, const std::string& path) {
+  try {
+    parse_point_cloud(text, path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
 }
 
 std::string error_of(const std::string& path) {
@@ -104,6 +115,24 @@ TEST_CASE("every format reads the same three points and normals", "[clouds][read
       put(bin, static_cast<float>(v));
   write(dir / "b.pcd", bin);
   require_cloud(read_point_cloud(dir / "b.pcd"));
+
+  // binary_compressed: field-major values, LZF-compressed, behind their two sizes
+  std::string raw;
+  for (int f = 0; f < 6; ++f)
+    for (const auto& p : kP)
+      put(raw, static_cast<float>(p[f]));
+  std::string packed(raw.size() * 2 + 16, '\0');
+  const unsigned n = pcl::lzfCompress(raw.data(), static_cast<unsigned>(raw.size()), packed.data(),
+                                      static_cast<unsigned>(packed.size()));
+  REQUIRE(n > 0);
+  std::string comp = pcd_header("binary_compressed");
+  put(comp, std::uint32_t{n});
+  put(comp, static_cast<std::uint32_t>(raw.size()));
+  comp += packed.substr(0, n);
+  write(dir / "c.pcd", comp);
+  require_cloud(read_point_cloud(dir / "c.pcd"));
+  comp[comp.size() - 3] ^= 0x55; // corrupt the stream: an error, never garbage
+  CHECK_THAT(parse_error(comp, "c.pcd"), Contains("c.pcd:11: binary_compressed data"));
 
   write(dir / "a.ply", ply_header("ascii") + text.str() + "3 0 1 2\n");
   require_cloud(read_point_cloud(dir / "a.ply"));
@@ -230,4 +259,24 @@ TEST_CASE("readers: malformed files give one line naming file and line", "[cloud
     CHECK_THAT(error_of(dir / c.name), StartsWith(dir / c.message));
   }
   CHECK_THAT(error_of(dir / "missing.pcd"), StartsWith(dir / "missing.pcd: cannot open"));
+  // binary payloads are bounds-checked while decoding
+  std::string ply = ply_header("binary_little_endian", 1, true);
+  for (int k = 0; k < 3; ++k)
+    put(ply, 1.0);
+  for (int k = 0; k < 3; ++k)
+    put(ply, 0.0f);
+  put(ply, std::uint8_t{200}); // a face with 200 indices, file ends after 1
+  put(ply, std::int32_t{0});
+  CHECK(parse_point_cloud(ply, "f.ply").points.rows() == 1); // faces after the vertices: unread
+  std::string front = "ply\nformat binary_little_endian 1.0\nelement face 1\n"
+                      "property list uchar int vertex_indices\nelement vertex 1\n"
+                      "property float x\nproperty float y\nproperty float z\nend_header\n";
+  front += std::string(1, char(200)) + std::string(16, '\0');
+  CHECK_THAT(parse_error(front, "g.ply"),
+             StartsWith("g.ply: element face 1 (binary data): the file ends inside it"));
+  std::string nan = pcd_header("binary", 1);
+  for (float v : {0.f, std::nanf(""), 0.f, 0.f, 0.f, 1.f})
+    put(nan, v);
+  CHECK_THAT(parse_error(nan, "n.pcd"),
+             StartsWith("n.pcd: point 1 (binary data): y is not a finite value"));
 }

@@ -7,14 +7,15 @@
 #include "interlin/reconstruction/clouds/point_cloud.h"
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace interlin {
 
 // Reads the cloud in `path`, the format chosen by the extension (case-insensitive).
 // Headers and ASCII data are parsed strictly (every line checked, numbers as in section files);
-// binary PCD/PLY payloads are decoded by PCL after the header has been validated against the
-// file size, so that no header can make the reader allocate more than the file holds.
+// binary payloads are checked against the header before anything is allocated, so memory stays
+// proportional to the file (PCD binary_compressed blocks are decompressed by PCL's LZF codec).
 // Inputs:
 //   path   the file; named in messages
 // Outputs:
@@ -27,6 +28,11 @@ namespace interlin {
 // malformed header, missing x/y/z, a field that is not a finite number, wrong field counts, fewer
 // or more points than the header declares, payload shorter than the header declares, no points.
 PointCloud read_point_cloud(const std::string& path, std::vector<std::string>* notes = nullptr);
+
+// Same as read_point_cloud, from the file's content `text`; `path` names it in messages and its
+// extension chooses the format.
+PointCloud parse_point_cloud(std::string_view text, const std::string& path,
+                             std::vector<std::string>* notes = nullptr);
 
 // True when read_point_cloud reads files with the extension of `path`.
 bool is_point_cloud_file(const std::string& path);
