@@ -25,8 +25,7 @@ struct CloudRows {
 // Each parser gets the whole file as `text` and throws InputError lines naming `path`.
 void read_pcd(const std::string& path, std::string_view text, CloudRows& rows,
               std::vector<std::string>& notes);
-void read_ply(const std::string& path, std::string_view text, CloudRows& rows,
-              std::vector<std::string>& notes);
+void read_ply(const std::string& path, std::string_view text, CloudRows& rows);
 void read_xyz(const std::string& path, std::string_view text, bool normals_expected,
               CloudRows& rows, std::vector<std::string>& notes);
 

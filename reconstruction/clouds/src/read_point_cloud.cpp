@@ -185,7 +185,7 @@ PointCloud parse_point_cloud(std::string_view text, const std::string& path,
   } else if (ext == ".pcd") {
     detail::read_pcd(path, text, rows, notes);
   } else if (ext == ".ply") {
-    detail::read_ply(path, text, rows, notes);
+    detail::read_ply(path, text, rows);
   } else if (is_point_cloud_file(path)) {
     detail::read_xyz(path, text, ext == ".xyzn", rows, notes);
   } else {

@@ -1,6 +1,8 @@
 // PLY and OBJ in full double precision (mesh_formats.h).
 #include "mesh_formats.h"
 
+#include "interlin/reconstruction/io/mesh_io.h"
+
 #include "interlin/reconstruction/io/csv_fields.h"
 
 #include "interlin/reconstruction/io/input_error.h"
@@ -173,8 +175,9 @@ enum class PlyFormat { ascii, little, big };
 // Reads the values of a PLY body, binary or ASCII, with bounds checks.
 class PlyData {
 public:
-  PlyData(string_view body, PlyFormat format, const std::string& path)
-      : body_(body), format_(format), path_(path) {}
+  // `first_line`: the line number of the body's first line (ASCII messages name lines).
+  PlyData(string_view body, PlyFormat format, const std::string& path, long first_line)
+      : body_(body), format_(format), path_(path), line_(first_line) {}
 
   double scalar(Scalar type) {
     if (format_ == PlyFormat::ascii)
@@ -217,9 +220,14 @@ public:
       ++pos_;
     }
     ++pos_;
+    ++line_;
   }
   std::size_t remaining() const { return body_.size() - std::min(pos_, body_.size()); }
-  [[noreturn]] void fail(const std::string& what) const { throw_input_error(path_, 0, what); }
+  // "PATH:LINE: what" in ASCII bodies, "PATH: what" in binary ones.
+  [[noreturn]] void fail(const std::string& what) const {
+    throw_input_error(path_, format_ == PlyFormat::ascii ? line_ : 0, what);
+  }
+  bool ascii() const { return format_ == PlyFormat::ascii; }
 
 private:
   template <class T>
@@ -246,12 +254,14 @@ private:
   string_view body_;
   PlyFormat format_;
   const std::string& path_;
+  long line_;
   std::size_t pos_ = 0;
 };
 
-// The header: format and elements; `body` receives the bytes after "end_header\n".
+// The header: format and elements; `body` receives the bytes after "end_header\n" and
+// `end_line` the number of the end_header line.
 std::vector<PlyElement> ply_header(string_view text, const std::string& path, PlyFormat& format,
-                                   string_view& body) {
+                                   string_view& body, long& end_line) {
   LineReader lines(text);
   string_view line;
   std::vector<string_view> w;
@@ -267,6 +277,7 @@ std::vector<PlyElement> ply_header(string_view text, const std::string& path, Pl
     if (w[0] == "end_header") {
       if (!has_format)
         throw_input_error(path, n, "the header has no format line");
+      end_line = n;
       const std::size_t at = static_cast<std::size_t>(line.data() - text.data()) + line.size();
       body = text.substr(std::min(text.size(), at + (text.substr(at, 1) == "\r" ? 2 : 1)));
       return elements;
@@ -325,13 +336,9 @@ std::size_t min_element_bytes(const PlyElement& e, PlyFormat format) {
   return std::max<std::size_t>(1, b);
 }
 
-} // namespace
-
-void parse_ply(string_view text, const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi& F) {
-  PlyFormat format = PlyFormat::ascii;
-  string_view body;
-  const std::vector<PlyElement> elements = ply_header(text, path, format, body);
-  // Counts against the file size before anything is allocated: a header may declare billions.
+// Counts against the file size before anything is allocated: a header may declare billions.
+void check_counts(const std::vector<PlyElement>& elements, PlyFormat format, string_view body,
+                  const std::string& path) {
   unsigned long long need = 0;
   for (const PlyElement& e : elements) {
     if (e.name == "vertex" && e.count > static_cast<unsigned long long>(kMaxIndex))
@@ -344,7 +351,39 @@ void parse_ply(string_view text, const std::string& path, Eigen::MatrixXd& V, Ei
                             " elements, more than the " + std::to_string(body.size()) +
                             " bytes after the header can hold");
   }
-  PlyData data(body, format, path);
+}
+
+// Reads one element instance: its scalar properties into `scalars` (when not null), lists
+// skipped with their lengths checked against the data.
+void read_instance(PlyData& data, const PlyElement& e, std::uint64_t i,
+                   std::vector<double>* scalars) {
+  for (std::size_t k = 0; k < e.props.size(); ++k) {
+    const PlyProperty& prop = e.props[k];
+    if (!prop.list) {
+      const double v = data.scalar(prop.type);
+      if (scalars)
+        (*scalars)[k] = v;
+      continue;
+    }
+    const double n = data.scalar(prop.count_type);
+    if (!(n >= 0) || n != std::floor(n) || n > static_cast<double>(data.remaining()))
+      data.fail(e.name + " " + std::to_string(i) + ": list length " +
+                std::to_string(static_cast<long long>(n)) + " beyond the data");
+    for (long c = 0; c < static_cast<long>(n); ++c)
+      data.scalar(prop.type);
+  }
+  data.end_element();
+}
+
+} // namespace
+
+void parse_ply(string_view text, const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi& F) {
+  PlyFormat format = PlyFormat::ascii;
+  string_view body;
+  long end_line = 0;
+  const std::vector<PlyElement> elements = ply_header(text, path, format, body, end_line);
+  check_counts(elements, format, body, path);
+  PlyData data(body, format, path, end_line + 1);
   std::vector<double> xyz;
   std::vector<std::array<int, 3>> tris;
   std::vector<long> corners;
@@ -457,3 +496,45 @@ void parse_obj(string_view text, const std::string& path, Eigen::MatrixXd& V, Ei
 }
 
 } // namespace interlin::detail
+
+namespace interlin {
+
+Eigen::MatrixXd parse_ply_vertices(std::string_view text, const std::string& path,
+                                   const std::vector<std::string>& names,
+                                   std::vector<bool>& found) {
+  using namespace detail;
+  PlyFormat format = PlyFormat::ascii;
+  std::string_view body;
+  long end_line = 0;
+  const std::vector<PlyElement> elements = ply_header(text, path, format, body, end_line);
+  check_counts(elements, format, body, path);
+  PlyData data(body, format, path, end_line + 1);
+  for (const PlyElement& e : elements) {
+    if (e.name != "vertex") {
+      for (std::uint64_t i = 0; i < e.count && !e.props.empty(); ++i)
+        read_instance(data, e, i, nullptr);
+      continue;
+    }
+    std::vector<int> col(names.size(), -1);
+    found.assign(names.size(), false);
+    for (std::size_t k = 0; k < e.props.size(); ++k)
+      for (std::size_t c = 0; c < names.size(); ++c)
+        if (!e.props[k].list && e.props[k].name == names[c]) {
+          col[c] = static_cast<int>(k);
+          found[c] = true;
+        }
+    Eigen::MatrixXd out(static_cast<Eigen::Index>(e.count),
+                        static_cast<Eigen::Index>(names.size()));
+    std::vector<double> scalars(e.props.size());
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+      read_instance(data, e, i, &scalars);
+      for (std::size_t c = 0; c < names.size(); ++c)
+        out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) =
+            col[c] >= 0 ? scalars[static_cast<std::size_t>(col[c])] : 0.0;
+    }
+    return out;
+  }
+  data.fail("no vertex element");
+}
+
+} // namespace interlin

@@ -154,17 +154,17 @@ TEST_CASE("PLY and OBJ readers: one error line, counts checked before allocation
   CHECK_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n"
                       "0\n",
                       "m.ply"),
-             Contains("m.ply: the vertex element lacks the property x, y or z"));
+             Contains("m.ply:6: the vertex element lacks the property x, y or z"));
   CHECK_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
                       "property float y\nproperty float z\nelement face 1\n"
                       "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
                       "3 0 1 3\n",
                       "i.ply"),
-             Contains("i.ply: face 0: vertex index 3 outside [0, 3)"));
+             Contains("i.ply:13: face 0: vertex index 3 outside [0, 3)"));
   CHECK_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                       "property float y\nproperty float z\nend_header\n0 nan 0\n",
                       "n.ply"),
-             Contains("n.ply: 'nan' is not a finite number"));
+             Contains("n.ply:8: 'nan' is not a finite number"));
   CHECK_THAT(error_of("ply\nformat binary_little_endian 1.0\nproperty float x\n", "p.ply"),
              Contains("p.ply:3: a property before any element"));
   // OBJ: line numbers, negative indices, a/t/n references, polygons.

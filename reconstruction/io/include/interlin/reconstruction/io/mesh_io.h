@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace interlin {
 
@@ -45,5 +46,15 @@ void read_mesh(const std::string& path, Eigen::MatrixXd& V, Eigen::MatrixXi& F);
 // extension (.ply or .obj, else std::invalid_argument) the format.
 void parse_mesh(std::string_view content, const std::string& path, Eigen::MatrixXd& V,
                 Eigen::MatrixXi& F);
+
+// The vertex element of a PLY file (any PLY parse_mesh reads: ASCII or binary of either byte
+// order, counts checked against the file size, other elements skipped): the scalar properties
+// `names` of every vertex, one column per name in file order of the vertices; found[c] tells
+// whether the file has property names[c] (its column is 0 when not). Values as stored (not
+// checked for finiteness in binary files; ASCII values must be finite numbers).
+// Throws InputError "PATH:LINE: ..." (header, ASCII data) or "PATH: ..." (binary data).
+// Used by the point-cloud reader (reconstruction/clouds).
+Eigen::MatrixXd parse_ply_vertices(std::string_view text, const std::string& path,
+                                   const std::vector<std::string>& names, std::vector<bool>& found);
 
 } // namespace interlin
