@@ -7,21 +7,12 @@
 #include "interlin/reconstruction/io/preview.h"
 #include "interlin/reconstruction/io/section_csv.h"
 
-#include <numeric>
-
 namespace interlin::python {
 
 namespace {
 
 using Eigen::MatrixXd;
 using Eigen::MatrixXi;
-
-// Source lines 1..#P for points made in Python (they name the row in messages).
-std::vector<long> row_numbers(Eigen::Index n) {
-  std::vector<long> lines(static_cast<size_t>(n));
-  std::iota(lines.begin(), lines.end(), 1L);
-  return lines;
-}
 
 template <class T>
 T with_points(const std::string& id, MatrixXd points, std::vector<long> lines) {

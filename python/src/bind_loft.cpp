@@ -276,6 +276,23 @@ label), .json (exact, with meta), .stl/.obj/.ply/.off (mesh of nu x nv samples, 
         "Reads a surface from .json (write_surface_json) or .igs/.iges (first entity 128).");
 }
 
+// The items of a list as T (Section, Guide): T objects as they are, (P, 3) arrays (P >= min_rows)
+// as T{"k", points, lines 1..P} with k the position in the list.
+template <class T>
+std::vector<T> items_of(const py::handle& list, const char* what, Index min_rows) {
+  std::vector<T> items;
+  for (const py::handle& item : list) {
+    if (py::isinstance<T>(item)) {
+      items.push_back(item.cast<T>());
+    } else {
+      const MatrixXd P = item.cast<MatrixXd>();
+      require_shape(P, 3, what, min_rows);
+      items.push_back({std::to_string(items.size()), P, row_numbers(P.rows())});
+    }
+  }
+  return items;
+}
+
 // Loft inputs as the CLI reads them: a path (str or os.PathLike), a SectionSet, or a list of
 // Section objects or (P, 3) arrays (ids "0", "1", ...).
 struct SectionsArg {
@@ -297,20 +314,7 @@ SectionsArg sections_arg(const py::object& o) {
     const SectionSet& set = o.cast<const SectionSet&>();
     return {set.sections, set.path, set.warnings};
   }
-  SectionsArg a;
-  for (const py::handle& item : o) {
-    if (py::isinstance<Section>(item)) {
-      a.sections.push_back(item.cast<Section>());
-    } else {
-      const MatrixXd P = item.cast<MatrixXd>();
-      require_shape(P, 3, "section points", 1);
-      std::vector<long> lines(static_cast<size_t>(P.rows()));
-      for (size_t i = 0; i < lines.size(); ++i)
-        lines[i] = long(i) + 1;
-      a.sections.push_back({std::to_string(a.sections.size()), P, lines});
-    }
-  }
-  return a;
+  return {items_of<Section>(o, "section points", 1), "", {}};
 }
 
 // Guides: None, a path, a GuideSet, or a list of Guide objects or (P, 3) arrays.
@@ -323,20 +327,7 @@ std::optional<GuideSet> guides_arg(const py::object& o) {
   }
   if (py::isinstance<GuideSet>(o))
     return o.cast<GuideSet>();
-  GuideSet g{"<guides>", {}};
-  for (const py::handle& item : o) {
-    if (py::isinstance<Guide>(item)) {
-      g.guides.push_back(item.cast<Guide>());
-    } else {
-      const MatrixXd P = item.cast<MatrixXd>();
-      require_shape(P, 3, "guide points", 2);
-      std::vector<long> lines(static_cast<size_t>(P.rows()));
-      for (size_t i = 0; i < lines.size(); ++i)
-        lines[i] = long(i) + 1;
-      g.guides.push_back({std::to_string(g.guides.size()), P, lines});
-    }
-  }
-  return g;
+  return GuideSet{"<guides>", items_of<Guide>(o, "guide points", 2)};
 }
 
 // An exponent given by name (as the CLI's --param / --span-param) or as a number.

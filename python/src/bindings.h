@@ -37,6 +37,9 @@ using release_gil = py::call_guard<py::gil_scoped_release>;
 void require_shape(const Eigen::MatrixXd& M, Eigen::Index cols, const char* name,
                    Eigen::Index min_rows = 0);
 
+// Source lines 1..n for points made in Python (they name the row in messages).
+std::vector<long> row_numbers(Eigen::Index n);
+
 // Boxes cross as (2, 3) arrays [min, max].
 Eigen::Matrix<double, 2, 3> box_to_array(const Eigen::AlignedBox3d& box);
 Eigen::AlignedBox3d box_from_array(const Eigen::MatrixXd& box); // ValueError unless (2, 3)

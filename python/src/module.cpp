@@ -3,6 +3,7 @@
 
 #include "interlin/interflatation/input_error.h"
 
+#include <numeric>
 #include <sstream>
 
 namespace interlin::python {
@@ -32,6 +33,12 @@ std::vector<py::ssize_t> pair_shape(const DoubleArray& a, const DoubleArray& b, 
     return shape(a.ndim() >= b.ndim() ? a : b);
   throw py::value_error(std::string(names) +
                         " must have one shape (or one of them a single value)");
+}
+
+std::vector<long> row_numbers(Eigen::Index n) {
+  std::vector<long> lines(static_cast<size_t>(n));
+  std::iota(lines.begin(), lines.end(), 1L);
+  return lines;
 }
 
 Eigen::Matrix<double, 2, 3> box_to_array(const Eigen::AlignedBox3d& box) {
