@@ -150,7 +150,8 @@ TEST_CASE("Cubic Gordon converges like O(h^8) = O(h_x^4 h_y^4) on the T13 functi
     err.push_back(test::max_error_on_unit_square(O, test::t13, 101));
   }
   INFO("errors " << err[0] << " " << err[1] << " " << err[2]);
-  // Measured 8.5 (studies/gordon_convergence: 9.96e-6, 2.99e-8, 7.76e-11 on a 201^2 sample).
+  // Measured 8.5 (studies/interlineation_convergence.py: 9.96e-6, 2.99e-8, 7.76e-11 on a 201^2
+  // sample).
   CHECK(test::fitted_order(h, err) == Approx(8.0).margin(0.7));
 }
 

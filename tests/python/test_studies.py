@@ -1,0 +1,40 @@
+"""The study scripts (studies/*.py): each runs on a tiny case (--quick) and writes its CSV
+tables, PNG plots and report.md (test_study_mpi.py: the same under mpirun)."""
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+STUDIES = sorted(os.path.basename(p)[:-3] for p in glob.glob(os.path.join(ROOT, "studies", "*.py"))
+                 if not os.path.basename(p).startswith("study"))
+
+
+def run_study(name, out, mpi_ranks=0):
+    cmd = [sys.executable, os.path.join(ROOT, "studies", name + ".py"), str(out), "--quick", "-q"]
+    env = dict(os.environ)
+    if mpi_ranks:
+        mpirun = shutil.which("mpirun")
+        assert mpirun, "mpirun (Debian openmpi-bin) is needed for the MPI sweep test"
+        cmd = [mpirun, "-n", str(mpi_ranks), "--oversubscribe"] + cmd
+        # Open MPI refuses root without these; CMA single copy fails in some containers.
+        env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OMPI_MCA_btl_vader_single_copy_mechanism="none")
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stderr
+
+
+@pytest.mark.parametrize("name", STUDIES)
+def test_study_writes_csv_png_and_report(tmp_path, name):
+    run_study(name, tmp_path)
+    report = (tmp_path / "report.md").read_text()
+    images = re.findall(r"!\[[^]]*\]\(([^)]+\.png)\)", report)
+    tables = re.findall(r"\]\(([^)]+\.csv)\)", report)
+    assert images and all((tmp_path / i).stat().st_size > 5000 for i in images)
+    assert glob.glob(str(tmp_path / "*.csv"))
+    assert all((tmp_path / t).exists() for t in tables)
+    assert not glob.glob(str(tmp_path / "tmp*")), "temporary files left behind"
