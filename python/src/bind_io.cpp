@@ -87,14 +87,16 @@ void bind_meshes(py::module_& m) {
       "Reads a triangle mesh (.stl .obj .ply .off) -> (V (N, 3), F (M, 3) int32).");
   m.def(
       "write_mesh",
-      [](const std::string& path, const MatrixXd& V, const MatrixXi& F) {
+      [](const std::string& path, const MatrixXd& V, const MatrixXi& F,
+         const std::string& precision) {
         require_shape(V, 3, "V");
         if (F.cols() != 3)
           throw py::value_error("F: expected an (M, 3) array of vertex indices");
-        write_mesh(path, V, F);
+        write_mesh(path, V, F, mesh_precision(precision));
       },
-      py::arg("path"), py::arg("V"), py::arg("F"), release_gil(),
-      "Writes a triangle mesh by extension (.stl .obj .ply .off), atomically. V (N, 3), F (M, 3).");
+      py::arg("path"), py::arg("V"), py::arg("F"), py::arg("precision") = "float64", release_gil(),
+      R"(Writes a triangle mesh by extension, atomically: V (N, 3), F (M, 3). .ply (binary) and .obj
+carry `precision` coordinates ("float64": exact, or "float32"); .stl and .off are float32.)");
 
   const auto options = [](int width, int height, const Eigen::Vector3d& up, double azimuth,
                           double elevation, int supersample) {
@@ -138,6 +140,12 @@ on it -> (height, width, 3) uint8 RGB. up: the vertical direction (zero: automat
 }
 
 } // namespace
+
+MeshPrecision mesh_precision(const std::string& name) {
+  return choice<MeshPrecision>(
+      {{"float64", MeshPrecision::float64}, {"float32", MeshPrecision::float32}}, name,
+      "precision");
+}
 
 void bind_io(py::module_& m) {
   bind_sections(m);

@@ -89,6 +89,7 @@ struct MeshArgs {
   int nu = 400, nv = 120;
   std::vector<double> required_v;
   bool cap = false;
+  MeshPrecision precision = MeshPrecision::float64;
 };
 
 // V (N, 3), F (M, 3) of surface_mesh; called without the GIL.
@@ -129,7 +130,7 @@ void write_surface(const Surface& S, const std::string& path, const std::string&
     if (e == ".png")
       write_preview_png(path, V, F, polylines);
     else
-      write_mesh(path, V, F);
+      write_mesh(path, V, F, mesh.precision);
   } else {
     throw py::value_error("'" + path +
                           "': unknown extension (use .igs .iges .json .stl .obj .ply .off .png)");
@@ -168,12 +169,15 @@ Surface(degree_u, degree_v, knots_u, knots_v, ctrl, num_u, num_v, closed_u=False
            py::arg("ctrl"), py::arg("num_u"), py::arg("num_v"), py::arg("closed_u") = false)
       .def_property_readonly("degree_u", [](const Surface& S) { return S.b.degree_u; })
       .def_property_readonly("degree_v", [](const Surface& S) { return S.b.degree_v; })
-      .def_property_readonly("knots_u", [](const Surface& S) { return S.b.knots_u; })
-      .def_property_readonly("knots_v", [](const Surface& S) { return S.b.knots_v; })
+      // Views into the surface (read-only arrays, no copy): properties keep the Surface alive.
+      .def_property_readonly("knots_u",
+                             [](const Surface& S) -> const VectorXd& { return S.b.knots_u; })
+      .def_property_readonly("knots_v",
+                             [](const Surface& S) -> const VectorXd& { return S.b.knots_v; })
       .def_property_readonly("num_u", [](const Surface& S) { return S.b.num_u; })
       .def_property_readonly("num_v", [](const Surface& S) { return S.b.num_v; })
       .def_property_readonly(
-          "ctrl", [](const Surface& S) { return S.b.ctrl; },
+          "ctrl", [](const Surface& S) -> const MatrixXd& { return S.b.ctrl; },
           "(num_u * num_v, 3), row i + num_u * j")
       .def_property_readonly("closed_u", [](const Surface& S) { return S.b.closed_u; })
       .def_property_readonly(
@@ -244,7 +248,7 @@ samples of a samples_u x samples_v grid (FLANN) -> SurfaceProjection.)")
             std::pair<MatrixXd, MatrixXi> VF;
             {
               py::gil_scoped_release release;
-              VF = mesh_of(S, {nu, nv, std::move(required_v), cap});
+              VF = mesh_of(S, {nu, nv, std::move(required_v), cap, MeshPrecision::float64});
             }
             return py::make_tuple(std::move(VF.first), std::move(VF.second));
           },
@@ -256,17 +260,21 @@ along v plus the rows required_v exactly; cap closes both ends (closed_u surface
           "write",
           [](const Surface& S, const py::object& path, const std::string& units,
              const std::map<std::string, std::string>& meta, int nu, int nv,
-             std::vector<double> required_v, bool cap, const std::vector<MatrixXd>& polylines) {
-            write_surface(S, require_path(path), units, meta, {nu, nv, std::move(required_v), cap},
+             std::vector<double> required_v, bool cap, const std::vector<MatrixXd>& polylines,
+             const std::string& precision) {
+            write_surface(S, require_path(path), units, meta,
+                          {nu, nv, std::move(required_v), cap, mesh_precision(precision)},
                           polylines);
           },
           py::arg("path"), py::arg("units") = "mm",
           py::arg("meta") = std::map<std::string, std::string>{}, py::arg("nu") = 400,
           py::arg("nv") = 120, py::arg("required_v") = std::vector<double>{},
           py::arg("cap") = false, py::arg("polylines") = std::vector<MatrixXd>{},
+          py::arg("precision") = "float64",
           R"(Writes the surface by extension, atomically: .igs/.iges (IGES 5.3 entity 128, `units`
-label), .json (exact, with meta), .stl/.obj/.ply/.off (mesh of nu x nv samples, optional cap),
-.png (shaded preview with polylines).)")
+label), .json (exact, with meta), .stl/.obj/.ply/.off (mesh of nu x nv samples, optional cap;
+.ply/.obj coordinates in `precision`, "float64" or "float32"), .png (shaded preview with
+polylines).)")
       .def("__repr__", [](const Surface& S) {
         return "<Surface degree " + std::to_string(S.b.degree_u) + " x " +
                std::to_string(S.b.degree_v) + ", control net " + std::to_string(S.b.num_u) + " x " +

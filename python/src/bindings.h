@@ -16,6 +16,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "interlin/reconstruction/io/mesh_io.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <map>
@@ -36,6 +38,9 @@ using release_gil = py::call_guard<py::gil_scoped_release>;
 // (cols < 0: any) and at least `min_rows` rows.
 void require_shape(const Eigen::MatrixXd& M, Eigen::Index cols, const char* name,
                    Eigen::Index min_rows = 0);
+
+// MeshPrecision by name: "float64" or "float32" (bind_io.cpp).
+MeshPrecision mesh_precision(const std::string& name);
 
 // Source lines 1..n for points made in Python (they name the row in messages).
 std::vector<long> row_numbers(Eigen::Index n);
@@ -82,5 +87,6 @@ void bind_rfunctions(py::module_& m);     // bind_rfunctions.cpp: interlin.rf, i
 void bind_io(py::module_& m);             // bind_io.cpp: section/guide/points files, meshes
 void bind_loft(py::module_& m);           // bind_loft.cpp: surfaces, loft, hold-out
 void bind_meshing(py::module_& m);        // bind_meshing.cpp: implicit meshes, mesh checks
+void bind_clouds(py::module_& m);         // bind_clouds.cpp: point clouds, their implicits
 
 } // namespace interlin::python

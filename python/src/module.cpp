@@ -69,4 +69,5 @@ PYBIND11_MODULE(_core, m) {
   bind_io(m);
   bind_loft(m);
   bind_meshing(m);
+  bind_clouds(m);
 }

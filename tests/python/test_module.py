@@ -27,10 +27,9 @@ def test_result_arrays_are_float64_and_int32(data_dir):
 
 
 def test_attributes_are_views_not_copies(data_dir):
-    S = interlin.read_sections(data_dir + "/rotor37/sections.csv")
-    s = S[0]
-    assert np.shares_memory(s.points, s.points)  # both reads view the C++ matrix
-    assert not s.points.flags.writeable or s.points.flags.owndata is False
+    s = interlin.read_sections(data_dir + "/rotor37/sections.csv")[0]
+    a, b = s.points, s.points
+    assert np.shares_memory(a, b) and not a.flags.owndata  # both view the C++ matrix
 
 
 def test_bad_arguments_raise_value_error():
@@ -39,3 +38,11 @@ def test_bad_arguments_raise_value_error():
             np.zeros((5, 2)))
     with pytest.raises(ValueError, match="align: 'middle' is not one of"):
         interlin.loft([np.zeros((5, 3))] * 2, align="middle")
+
+
+def test_surface_arrays_are_views_that_keep_the_surface_alive(data_dir):
+    S = interlin.loft(data_dir + "/rotor37/sections.csv").surface
+    a, b = S.ctrl, S.ctrl
+    assert np.shares_memory(a, b) and not a.flags.writeable
+    del S
+    assert np.isfinite(a).all()  # the view keeps its surface

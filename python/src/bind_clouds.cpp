@@ -1,0 +1,207 @@
+// Python bindings of reconstruction/clouds: point-cloud files, PCL filters and normals, normal
+// orientation, noise estimates and the partition-of-unity implicit of unstructured scans.
+#include "bindings.h"
+
+#include "interlin/reconstruction/clouds/cloud_checks.h"
+#include "interlin/reconstruction/clouds/cloud_filters.h"
+#include "interlin/reconstruction/clouds/cloud_implicit.h"
+#include "interlin/reconstruction/clouds/noise_level.h"
+#include "interlin/reconstruction/clouds/orient_normals.h"
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
+#include "interlin/reconstruction/clouds/read_point_cloud.h"
+
+#include <memory>
+
+namespace interlin::python {
+
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixX3d;
+
+// A fitted cloud implicit and its evaluator (built once).
+struct CloudModel {
+  std::shared_ptr<const CloudImplicit> model;
+  ImplicitFunction function;
+  CloudFitInfo info;
+};
+
+py::dict info_dict(const CloudFitInfo& i) {
+  py::dict d;
+  d["noise"] = i.noise;
+  d["noise_estimated"] = i.noise_estimated;
+  d["cells"] = i.cells;
+  d["leaves"] = i.leaves;
+  d["two_sheet_leaves"] = i.two_sheet_leaves;
+  d["far_leaves"] = i.far_leaves;
+  d["depth"] = i.depth;
+  d["rms_distance"] = i.rms_distance;
+  d["max_distance"] = i.max_distance;
+  d["within_3_sigma"] = i.within_3_sigma;
+  d["flipped"] = i.flipped;
+  return d;
+}
+
+py::dict report_dict(const CloudPrepReport& r) {
+  py::dict d;
+  d["read"] = r.read;
+  d["distinct"] = r.distinct;
+  d["outliers"] = r.outliers;
+  d["kept"] = r.kept;
+  d["normals_estimated"] = r.normals_estimated;
+  d["normals_reoriented"] = r.normals_reoriented;
+  d["disagreement"] = r.disagreement;
+  d["components"] = r.components;
+  return d;
+}
+
+void bind_cloud_io(py::module_& m) {
+  py::class_<PointCloud>(m, "PointCloud", R"(A point cloud: points (N, 3) and unit normals (N, 3),
+or (0, 3) without normals. PointCloud(points, normals=None).)")
+      .def(py::init([](MatrixX3d points, std::optional<MatrixX3d> normals) {
+             PointCloud c{std::move(points)};
+             if (normals) {
+               if (normals->rows() != c.points.rows())
+                 throw py::value_error("normals: expected one row per point");
+               c.normals = std::move(*normals);
+             }
+             return c;
+           }),
+           py::arg("points"), py::arg("normals") = py::none())
+      .def_readonly("points", &PointCloud::points, "(N, 3)")
+      .def_readonly("normals", &PointCloud::normals, "(N, 3), or (0, 3) without normals")
+      .def_property_readonly("has_normals", &PointCloud::has_normals)
+      .def("__len__", [](const PointCloud& c) { return c.points.rows(); });
+  m.def(
+      "read_point_cloud",
+      [](const std::string& path, bool with_notes) -> py::object {
+        std::vector<std::string> notes;
+        PointCloud c;
+        {
+          py::gil_scoped_release release;
+          c = read_point_cloud(path, &notes);
+        }
+        return with_notes ? py::object(py::make_tuple(std::move(c), notes))
+                          : py::object(py::cast(std::move(c)));
+      },
+      py::arg("path"), py::arg("with_notes") = false,
+      R"(Reads a point cloud (.pcd, .ply, .xyz/.xyzn/.txt, .csv; docs/formats.md "Point clouds")
+-> PointCloud, or (PointCloud, notes) with with_notes. InputError "FILE:LINE: ..." on bad input.)");
+  m.def(
+      "check_cloud",
+      [](const PointCloud& c, const std::string& path) { return check_cloud(path, c); },
+      py::arg("cloud"), py::arg("path") = "<cloud>", release_gil(),
+      "Removes repeated points; InputError \"PATH: ...\" for fewer than 20 distinct points or "
+      "points on one point, line or plane.");
+}
+
+void bind_cloud_steps(py::module_& m) {
+  m.def(
+      "remove_statistical_outliers",
+      [](const PointCloud& c, int k, double ratio) {
+        Index removed = 0;
+        PointCloud kept;
+        {
+          py::gil_scoped_release release;
+          kept = remove_statistical_outliers(c, k, ratio, &removed);
+        }
+        return py::make_tuple(std::move(kept), removed);
+      },
+      py::arg("cloud"), py::arg("k") = 16, py::arg("std_ratio") = 3.0,
+      "PCL's statistical outlier removal -> (kept PointCloud, number removed).");
+  m.def("voxel_downsample", &voxel_downsample, py::arg("cloud"), py::arg("leaf"), release_gil(),
+        "PCL's voxel grid: the points of each cubic voxel of side `leaf` replaced by their "
+        "centroid.");
+  m.def("estimate_normals", &estimate_normals, py::arg("P"), py::arg("k") = 16,
+        py::arg("threads") = 0, release_gil(),
+        "PCL's normals of the points P (N, 3) from their k nearest neighbours -> (N, 3), "
+        "unoriented.");
+  m.def(
+      "orient_normals",
+      [](const MatrixX3d& P, MatrixX3d N, int k) {
+        OrientationInfo info;
+        {
+          py::gil_scoped_release release;
+          orient_normals(P, N, k, &info);
+        }
+        return py::make_tuple(std::move(N), info.components, info.flipped);
+      },
+      py::arg("P"), py::arg("N"), py::arg("k") = 10,
+      "Consistent outward signs of the normals N (N, 3) at P (Hoppe et al. 1992, MST) -> "
+      "(N oriented, components, flipped).");
+  m.def("orientation_disagreement", &orientation_disagreement, py::arg("P"), py::arg("N"),
+        py::arg("k") = 10, release_gil(),
+        "Fraction of neighbouring pairs on one sheet whose normals point to opposite sides.");
+  m.def("estimate_noise", &estimate_noise, py::arg("P"), py::arg("k") = 24,
+        py::arg("samples") = 2000, release_gil(),
+        "Standard deviation of the scan noise normal to the surface (median of local quadric "
+        "residuals).");
+  m.def(
+      "prepare_cloud",
+      [](const PointCloud& cloud, const std::string& path, int outlier_neighbours,
+         double outlier_ratio, double voxel, const std::string& normals, int normal_neighbours,
+         int orient_neighbours, int threads) {
+        CloudPrepOptions o;
+        o.outlier_neighbours = outlier_neighbours, o.outlier_ratio = outlier_ratio;
+        o.voxel = voxel;
+        o.normals = choice<NormalSource>({{"auto", NormalSource::automatic},
+                                          {"file", NormalSource::file},
+                                          {"estimate", NormalSource::estimate}},
+                                         normals, "normals");
+        o.normal_neighbours = normal_neighbours, o.orient_neighbours = orient_neighbours;
+        o.threads = threads;
+        CloudPrepReport report;
+        std::vector<std::string> notes;
+        PointCloud c;
+        {
+          py::gil_scoped_release release;
+          c = prepare_cloud(path, cloud, o, &report, &notes);
+        }
+        return py::make_tuple(std::move(c), report_dict(report), notes);
+      },
+      py::arg("cloud"), py::arg("path") = "<cloud>", py::arg("outlier_neighbours") = 16,
+      py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
+      py::arg("normal_neighbours") = 16, py::arg("orient_neighbours") = 10, py::arg("threads") = 0,
+      R"(The preparation steps in order: repeated points and degenerate clouds, statistical
+outlier removal (outlier_neighbours 0: off), voxel downsampling (voxel 0: off), normals ("auto":
+the file's when consistent, re-oriented or estimated; "file"; "estimate") and their orientation
+-> (PointCloud, report dict, notes).)");
+}
+
+void bind_cloud_fit(py::module_& m) {
+  py::class_<CloudModel>(m, "CloudModel", R"(A partition-of-unity implicit fitted to a cloud
+(Ohtake et al. 2003): function (Implicit: F > 0 inside), info (dict: noise, leaves, depth,
+rms_distance, max_distance, within_3_sigma, ...), leaves (number of local fits).)")
+      .def_readonly("function", &CloudModel::function)
+      .def_property_readonly("info", [](const CloudModel& c) { return info_dict(c.info); })
+      .def_property_readonly("leaves", [](const CloudModel& c) { return c.model->fits.size(); })
+      .def_property_readonly("box", [](const CloudModel& c) { return box_to_array(c.model->box); });
+  m.def(
+      "fit_cloud_implicit",
+      [](const PointCloud& cloud, double noise, int min_points, int max_depth, double support,
+         double fit_ball, int threads) {
+        CloudFitOptions o;
+        o.noise = noise, o.min_points = min_points, o.max_depth = max_depth;
+        o.support = support, o.fit_ball = fit_ball, o.threads = threads;
+        py::gil_scoped_release release;
+        CloudModel c;
+        c.model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(cloud, o, &c.info));
+        c.function = cloud_implicit_function(c.model);
+        return c;
+      },
+      py::arg("cloud"), py::arg("noise") = 0.0, py::arg("min_points") = 20,
+      py::arg("max_depth") = 12, py::arg("support") = 0.6, py::arg("fit_ball") = 0.75,
+      py::arg("threads") = 0,
+      R"(Fits the multi-level partition-of-unity implicit to a cloud with oriented normals
+(prepare_cloud) -> CloudModel. noise 0: estimated from the points.)");
+}
+
+} // namespace
+
+void bind_clouds(py::module_& m) {
+  bind_cloud_io(m);
+  bind_cloud_steps(m);
+  bind_cloud_fit(m);
+}
+
+} // namespace interlin::python

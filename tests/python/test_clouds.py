@@ -1,0 +1,59 @@
+"""Point clouds from Python: files, PCL filters and normals, orientation, noise, the
+partition-of-unity implicit, and bad input reported with the reader's one-line messages."""
+import numpy as np
+import pytest
+
+import interlin
+
+
+def sphere_cloud(n, sigma, rng):
+    """n points on the unit sphere (Fibonacci spiral) with normal noise sigma, exact normals."""
+    i = np.arange(n) + 0.5
+    z = 1 - 2 * i / n
+    t = np.pi * (1 + 5 ** 0.5) * i
+    N = np.stack([np.sqrt(1 - z * z) * np.cos(t), np.sqrt(1 - z * z) * np.sin(t), z], axis=1)
+    return N * (1 + sigma * rng.normal(size=(n, 1))), N
+
+
+def test_read_bunny_and_estimate_normals(data_dir):
+    c, notes = interlin.read_point_cloud(data_dir + "/clouds/bun0.pcd", with_notes=True)
+    assert c.points.shape == (397, 3) and c.has_normals and len(c) == 397
+    N = interlin.estimate_normals(c.points, k=16, threads=1)
+    assert N.shape == (397, 3) and np.allclose(np.linalg.norm(N, axis=1), 1)
+
+
+def test_orientation_and_noise_on_spheres():
+    rng = np.random.default_rng(2)
+    for sigma in (0.0, 0.002, 0.01):
+        P, exact = sphere_cloud(2000, sigma, rng)
+        N = interlin.estimate_normals(P, k=16, threads=1)
+        O, components, flipped = interlin.orient_normals(P, N, k=10)
+        assert components == 1 and np.all(np.sum(O * exact, axis=1) > 0)
+        assert interlin.orientation_disagreement(P, O, 10) < 0.01
+        # estimate_noise: about sigma (relative 30 %) above the quadric error of clean points
+        est = interlin.estimate_noise(P)
+        assert est < 1e-3 if sigma == 0 else abs(est / sigma - 1) < 0.3
+
+
+def test_fit_a_noisy_sphere_and_mesh_it():
+    rng = np.random.default_rng(4)
+    P, N = sphere_cloud(3000, 0.002, rng)
+    cloud, report, notes = interlin.prepare_cloud(interlin.PointCloud(P, N), threads=1)
+    assert report["kept"] == len(cloud) and cloud.has_normals
+    model = interlin.fit_cloud_implicit(cloud, threads=1)
+    F = model.function
+    assert F(np.zeros((1, 3)))[0] > 0 > F(np.array([[2.0, 0, 0]]))[0]
+    V, T = interlin.mesh_implicit(F, resolution=40, threads=1)
+    r = np.linalg.norm(V, axis=1)
+    assert interlin.check_mesh(V, T)["watertight"] and np.max(np.abs(r - 1)) < 0.01
+    assert model.info["within_3_sigma"] > 0.95
+
+
+def test_bad_cloud_files_raise_input_errors(tmp_path):
+    bad = tmp_path / "bad.xyz"
+    bad.write_text("0 0 0\n1 abc 0\n")
+    with pytest.raises(interlin.InputError, match=r"bad.xyz:2: "):
+        interlin.read_point_cloud(str(bad))
+    flat = interlin.PointCloud(np.c_[np.random.default_rng(0).uniform(size=(50, 2)), np.zeros(50)])
+    with pytest.raises(interlin.InputError, match="flat.csv: .*plane"):
+        interlin.check_cloud(flat, "flat.csv")
