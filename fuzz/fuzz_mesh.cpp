@@ -1,5 +1,6 @@
-// Fuzz target: OBJ mesh files read by interlin (reconstruction/io/mesh_formats), through
-// parse_mesh; an accepted mesh must index only its own vertices.
+// Fuzz targets mesh_ply and mesh_obj: the PLY and OBJ mesh readers of interlin
+// (reconstruction/io/mesh_formats) through parse_mesh; FUZZ_FILE ("fuzz.ply" or "fuzz.obj") picks
+// the format. An accepted mesh must be finite and index only its own vertices.
 #include "fuzz_support.h"
 
 #include "interlin/reconstruction/io/input_error.h"
@@ -10,7 +11,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::only_throws<InputError>([&] {
     Eigen::MatrixXd V;
     Eigen::MatrixXi F;
-    parse_mesh(fuzz::text(data, size), "fuzz.obj", V, F);
+    parse_mesh(fuzz::text(data, size), FUZZ_FILE, V, F);
     if (!V.allFinite() || (F.size() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())))
       std::abort();
   });
