@@ -29,8 +29,8 @@ Options:
   --gradient             also print the gradient of F (exact, forward-mode dual numbers)
   --set NAME=VALUE       override a 'param NAME = ...;' of the model (repeatable)
   --var NAME             evaluate the variable NAME instead of res
-  --max-model-size N     expression nodes and function calls the model may expand to
-                         (default 5000000)
+  --max-model-size N     work the model may expand to: expression nodes, function calls,
+                         Bezier samples (default 5000000)
   -o, --output FILE      write the CSV to FILE (written whole or not at all)
   -q, --quiet            no progress lines on stderr
   -h, --help             this help

@@ -171,8 +171,8 @@ void loft_main(const ParsedArgs& a, std::vector<std::string>& written) {
   const auto [nu, nv] = parse_int_pair("samples", a.get("samples", "400,120"), 3, 1000000000);
   const long long max_triangles = limit_option(a, "max-triangles", limits::mesh_triangles);
   if (2LL * nu * nv > max_triangles) // two per sample cell; the section rows add a few
-    options_exceed("--samples " + a.get("samples"), std::to_string(2LL * nu * nv) + " triangles",
-                   max_triangles, "max-triangles");
+    options_exceed("--samples " + a.get("samples", "400,120"),
+                   std::to_string(2LL * nu * nv) + " triangles", max_triangles, "max-triangles");
   const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
   const MeshPrecision precision = mesh_precision(a);
   const bool cap = a.has("cap"), quiet = a.has("quiet"), with_guides = a.has("guides");

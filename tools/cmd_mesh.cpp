@@ -58,8 +58,8 @@ Options:
   --max-grid-nodes N     largest grid --resolution or --cell may ask for (default 1100000000,
                          each node one evaluation of the model)
   --max-triangles N      largest mesh (default 20000000, about 4.5 GB of memory)
-  --max-model-size N     expression nodes and function calls the model may expand to
-                         (default 5000000)
+  --max-model-size N     work the model may expand to: expression nodes, function calls,
+                         Bezier samples (default 5000000)
   -q, --quiet            no progress or warnings on stderr
   -h, --help             this help
 

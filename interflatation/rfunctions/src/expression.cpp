@@ -98,11 +98,15 @@ NodeBudget::~NodeBudget() {
 
 void NodeBudget::charge(long long units) {
   NodeBudget* b = current_budget;
-  if (!b || (b->used_ += units) <= b->limit_)
+  if (!b)
     return;
-  throw LimitError("the model expands to more expression nodes and function calls than the "
-                   "limit of " +
-                       std::to_string(b->limit_),
+  if (units <= b->limit_ - b->used_) { // used_ <= limit_ always: no overflow
+    b->used_ += units;
+    return;
+  }
+  throw LimitError("the model needs more than the model-size limit of " +
+                       std::to_string(b->limit_) +
+                       " units (expression nodes, function calls, Bezier samples)",
                    "max-model-size");
 }
 

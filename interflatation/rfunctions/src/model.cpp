@@ -239,14 +239,21 @@ const std::map<std::string, Builtin>& builtins() {
     t["arc_frame"] = {4, 4, [](A a) { return arc_frame(a.e(0), a.e(1), a.e(2), a.num(3)); }};
     // regions bounded by curves (seed 003 §3.3)
     t["polygon_region"] = {3, 3, [](A a) { return polygon_region(a.e(0), a.e(1), a.points(2)); }};
-    t["bezier_region"] = {4, -1, [](A a) {
-                            std::vector<std::vector<Eigen::Vector2d>> branches;
-                            for (int i = 3; i < a.size(); ++i)
-                              branches.push_back(a.points(i));
-                            return polygon_region(
-                                a.e(0), a.e(1),
-                                sample_bezier_chain(branches, a.integer(2, 1, 100000)));
-                          }};
+    t["bezier_region"] = {
+        4, -1, [](A a) {
+          std::vector<std::vector<Eigen::Vector2d>> branches;
+          double work = 0; // de Casteljau: segments x (control points)^2
+          const int segments = a.integer(2, 1, 100000);
+          for (int i = 3; i < a.size(); ++i) {
+            branches.push_back(a.points(i));
+            work +=
+                double(segments) * double(branches.back().size()) * double(branches.back().size());
+          }
+          // Sampling counts against the model size: a short file could
+          // otherwise ask for hours of it and millions of polygon vertices.
+          rf::detail::NodeBudget::charge(static_cast<long long>(std::min(work, 1e18)));
+          return polygon_region(a.e(0), a.e(1), sample_bezier_chain(branches, segments));
+        }};
     return t;
   }();
   return table;

@@ -87,8 +87,8 @@ using NodePtr = std::shared_ptr<const Node>;
 int arity(Op op);
 const char* op_name(Op op);
 
-// A budget of work while it is alive on its thread: every node make() builds and every unit
-// charged by hand (the model evaluator charges each function call it expands) counts one;
+// A budget of work while it is alive on its thread: every node make() builds counts one, and
+// the model evaluator charges each function call it expands and the samples of Bezier regions;
 // past `limit` units a LimitError is thrown (limits::model_size). Budgets nest: the innermost
 // one counts. Without a budget nothing is counted.
 class NodeBudget {

@@ -29,9 +29,9 @@ inline constexpr int model_nesting = 500;
 inline constexpr int expression_depth = 20000;
 // .rf models, stack: user functions expanded inside user functions.
 inline constexpr int call_depth = 200;
-// .rf models, memory and time: expression nodes built plus function calls expanded while
-// reading one model (a node is about 100 bytes; the seed models need at most 1310);
-// --max-model-size.
+// .rf models, memory and time: expression nodes built, function calls expanded and Bezier
+// sampling work (segments x control points^2) while reading one model (a node is about 100
+// bytes; the seed models need 276 to 72 276); --max-model-size.
 inline constexpr long long model_size = 5'000'000;
 // interlin loft and interlin mesh, memory: triangles of the mesh (the commands peak at about
 // 220 bytes per triangle, so about 4.5 GB); --max-triangles.

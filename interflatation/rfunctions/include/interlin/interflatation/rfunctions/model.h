@@ -17,8 +17,9 @@ struct ModelOptions {
   // Values that replace the defaults of the model's `param NAME = value;` declarations. Naming a
   // parameter the model does not declare is an InputError.
   std::map<std::string, double> parameters;
-  // Work allowed while reading the model: expression nodes built plus user-function calls
-  // expanded (limits::model_size). Past it reading stops with a LimitError naming the statement.
+  // Work allowed while reading the model: expression nodes built, user-function calls expanded
+  // and Bezier sampling (limits::model_size). Past it reading stops with a LimitError naming
+  // the statement.
   long long max_size = limits::model_size;
 };
 
