@@ -286,6 +286,10 @@ std::vector<Case> cases() {
        {file("m.rf", model("res = x" + repeat(" + x", 19990) + ";\n"
                            "res = normalize(res) * dx(res);")), p},
        "eval m.rf p.csv --gradient -o o.csv -q", 0, "", {"o.csv"}},
+      {"eval: a Bezier region of 200 control points sampled 100000 times",
+       {file("m.rf", model("res = bezier_region(x, y, 100000, [" + repeat("0, 0, 1, 0, ", 199) +
+                           "1, 1]);")), p},
+       "eval m.rf p.csv -q", 1, "^interlin: m\\.rf:2:1: .*model-size limit.*--max-model-size", {}},
       {"eval: function calls doubling 60 times",
        {file("m.rf", model(doubling_functions(60))), p},
        "eval m.rf p.csv -q", 1, "^interlin: m\\.rf:\\d+:\\d+: .*limit.*--max-model-size", {}},
