@@ -13,6 +13,41 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
+namespace {
+
+// c with `value` inserted up to multiplicity c.degree (a knot of the curve then carries one
+// control point that is the curve's point there).
+BSplineCurve with_breakpoints(const BSplineCurve& c, const std::vector<double>& values) {
+  std::vector<double> X;
+  for (double x : values) {
+    const long have = std::count(c.knots.data(), c.knots.data() + c.knots.size(), x);
+    for (long k = have; k < c.degree; ++k)
+      X.push_back(x);
+  }
+  std::sort(X.begin(), X.end());
+  return X.empty() ? c : refine_knots(c, Eigen::Map<const VectorXd>(X.data(), long(X.size())));
+}
+
+// Index of the control point that is the curve's point at the knot value x (multiplicity >=
+// degree): the last occurrence minus the degree.
+long point_index(const BSplineCurve& c, double x) {
+  const double* k = c.knots.data();
+  const long last = long(std::upper_bound(k, k + c.knots.size(), x) - k) - 1;
+  return std::min<long>(last - c.degree, c.ctrl.rows() - 1);
+}
+
+// Control points [ka, kb] and the knots strictly inside (a, b) of a refined curve.
+void append_piece(const BSplineCurve& c, double a, double b, bool skip_first,
+                  std::vector<Eigen::RowVectorXd>& P, std::vector<double>& K, double shift) {
+  for (long i = point_index(c, a) + (skip_first ? 1 : 0); i <= point_index(c, b); ++i)
+    P.push_back(c.ctrl.row(i));
+  for (long i = 0; i < c.knots.size(); ++i)
+    if (c.knots(i) > a && c.knots(i) < b)
+      K.push_back(c.knots(i) + shift);
+}
+
+} // namespace
+
 BSplineCurve refine_knots(const BSplineCurve& c, const VectorXd& X) {
   if (c.periodic)
     throw std::invalid_argument("refine_knots: convert periodic curves with periodic_to_clamped");
@@ -160,6 +195,38 @@ std::vector<BSplineCurve> make_compatible(const std::vector<BSplineCurve>& curve
     out.push_back(refine_knots(
         c, Eigen::Map<const VectorXd>(missing.data(), static_cast<Index>(missing.size()))));
   }
+  return out;
+}
+
+BSplineCurve curve_piece(const BSplineCurve& c, double a, double b) {
+  const int p = c.degree;
+  const double u0 = domain_begin(c), u1 = domain_end(c);
+  if (!(a >= u0 && a <= u1 && b >= u0 && b <= u1) || a == b)
+    throw std::invalid_argument("curve_piece: the piece's ends must be distinct and in the domain");
+  if (a > b && b == u0) // up to the end of the domain: no wrap needed
+    b = u1;
+  const BSplineCurve r = with_breakpoints(c, {a, b});
+  std::vector<Eigen::RowVectorXd> P;
+  std::vector<double> K(size_t(p + 1), a);
+  double end = b;
+  append_piece(r, a, a < b ? b : u1, false, P, K, 0);
+  if (a > b) { // through the end of a closed curve: on from its start, shifted by one period
+    const double period = u1 - u0;
+    K.insert(K.end(), size_t(p), u1);
+    append_piece(r, u0, b, true, P, K, period);
+    end = b + period;
+  }
+  K.insert(K.end(), size_t(p + 1), end);
+  BSplineCurve out;
+  out.degree = p;
+  out.ctrl.resize(long(P.size()), c.ctrl.cols());
+  for (size_t i = 0; i < P.size(); ++i)
+    out.ctrl.row(long(i)) = P[i];
+  out.knots.resize(long(K.size()));
+  for (size_t i = 0; i < K.size(); ++i)
+    out.knots(long(i)) = (K[i] - a) / (end - a);
+  if (out.knots.size() != out.ctrl.rows() + p + 1)
+    throw std::logic_error("curve_piece: inconsistent piece");
   return out;
 }
 

@@ -4,6 +4,8 @@
 #include "interlin/reconstruction/io/atomic_file.h"
 #include "interlin/reconstruction/io/input_error.h"
 
+#include "cad_text.h"
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -33,17 +35,9 @@ constexpr long kMaxSequence = 9999999; // seven digits
 
 // ---------------------------------------------------------------------------------- writing --
 
-// Shortest decimal that reads back to x (std::to_chars), in IGES real syntax: the mantissa
-// always has a decimal point and the exponent letter is E ("1.", "0.25", "1.5E-07").
+// Shortest decimal that reads back to x, in IGES real syntax ("1.", "0.25", "1.5E-07").
 std::string iges_real(double x) {
-  std::array<char, 64> buf{};
-  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), x);
-  const std::string s(buf.data(), res.ptr);
-  const auto e = s.find('e');
-  std::string mantissa = s.substr(0, e);
-  if (mantissa.find('.') == std::string::npos)
-    mantissa += '.';
-  return e == std::string::npos ? mantissa : mantissa + "E" + s.substr(e + 1);
+  return detail::cad_real(x);
 }
 
 // Printable ASCII only (the file is 7-bit text), at most `max` characters.
@@ -96,19 +90,7 @@ std::vector<std::string> pack_record(const std::vector<std::string>& params, std
 
 // Global parameter 18/25 "YYYYMMDD.HHNNSS" (UTC); SOURCE_DATE_EPOCH makes the output reproducible.
 std::string iges_date() {
-  std::time_t t = std::time(nullptr);
-  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
-    long long value = 0;
-    const std::string_view e(epoch);
-    const auto res = std::from_chars(e.data(), e.data() + e.size(), value);
-    if (res.ec == std::errc() && res.ptr == e.data() + e.size() && value >= 0)
-      t = static_cast<std::time_t>(value);
-  }
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  std::array<char, 32> buf{};
-  std::strftime(buf.data(), buf.size(), "%Y%m%d.%H%M%S", &tm);
-  return buf.data();
+  return detail::file_time("%Y%m%d.%H%M%S");
 }
 
 struct UnitLabel {

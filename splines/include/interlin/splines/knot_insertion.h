@@ -23,4 +23,11 @@ Eigen::VectorXd knot_union(const std::vector<Eigen::VectorXd>& knot_vectors);
 // point. Throws std::invalid_argument for periodic curves or differing degree/domain.
 std::vector<BSplineCurve> make_compatible(const std::vector<BSplineCurve>& curves);
 
+// The piece [a, b] of a clamped curve as a clamped curve on [0, 1] (the same points, knots mapped
+// affinely): a < b in the domain, or for a closed curve (first and last control points equal)
+// a > b, the piece through the end of the domain and on from its start (joined there by a knot of
+// multiplicity degree). Knots a and b are inserted up to multiplicity degree (refine_knots).
+// Throws std::invalid_argument for a == b or ends outside the domain.
+BSplineCurve curve_piece(const BSplineCurve& c, double a, double b);
+
 } // namespace interlin
