@@ -4,6 +4,8 @@
 
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 
+#include "parallel.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -116,35 +118,43 @@ struct Facet {
 };
 
 // Facets of exactly one alive cell. Only facets with a node next to a dead cell (or the grid
-// border) can be such facets; `edge_node` marks those nodes.
+// border) can be such facets; `edge_node` marks those nodes. Layers of cubes in parallel, output
+// in cube order.
 std::vector<Facet> boundary_facets(const Background& bg, const std::vector<char>& alive,
-                                   const std::vector<char>& edge_node) {
+                                   const std::vector<char>& edge_node, int threads) {
   const CellShapes& sh = shapes();
-  std::vector<Facet> out;
   auto touches = [&](long cell) {
     for (int v = 0; v < bg.corners(); ++v)
       if (edge_node[size_t(bg.node(cell, v))])
         return true;
     return false;
   };
+  const long layer = bg.cx * bg.cy;
+  std::vector<std::vector<Facet>> per_layer(static_cast<size_t>(bg.cz));
   if (!bg.tets) {
-    for (long q = 0; q < bg.cubes(); ++q) {
-      if (!alive[size_t(q)] || !touches(q))
-        continue;
-      const long i = q % bg.cx, j = (q / bg.cx) % bg.cy, k = q / (bg.cx * bg.cy);
-      const long c[3] = {i, j, k}, n[3] = {bg.cx, bg.cy, bg.cz};
-      const long stride[3] = {1, bg.cx, bg.cx * bg.cy};
-      for (int f = 0; f < 6; ++f) {
-        const int a = f / 2, s = f & 1;
-        const long nb = c[a] + (s ? 1 : -1);
-        if (nb >= 0 && nb < n[a] && alive[size_t(q + (s ? 1 : -1) * stride[a])])
+    detail::parallel_for(bg.cz, threads, [&](long k, int) {
+      std::vector<Facet>& out = per_layer[size_t(k)];
+      for (long q = k * layer; q < (k + 1) * layer; ++q) {
+        if (!alive[size_t(q)] || !touches(q))
           continue;
-        Facet x;
-        for (int m = 0; m < 4; ++m)
-          x.v[size_t(m)] = bg.cube_node(q, sh.cube_face[size_t(f)][size_t(m)]);
-        out.push_back(x);
+        const long i = q % bg.cx, j = (q / bg.cx) % bg.cy;
+        const long c[3] = {i, j, k}, n[3] = {bg.cx, bg.cy, bg.cz};
+        const long stride[3] = {1, bg.cx, bg.cx * bg.cy};
+        for (int f = 0; f < 6; ++f) {
+          const int a = f / 2, s = f & 1;
+          const long nb = c[a] + (s ? 1 : -1);
+          if (nb >= 0 && nb < n[a] && alive[size_t(q + (s ? 1 : -1) * stride[a])])
+            continue;
+          Facet x;
+          for (int m = 0; m < 4; ++m)
+            x.v[size_t(m)] = bg.cube_node(q, sh.cube_face[size_t(f)][size_t(m)]);
+          out.push_back(x);
+        }
       }
-    }
+    });
+    std::vector<Facet> out;
+    for (const auto& l : per_layer)
+      out.insert(out.end(), l.begin(), l.end());
     return out;
   }
   // Tetrahedra: facets of the candidate cells keyed by their sorted nodes; facets seen once.
@@ -152,20 +162,26 @@ std::vector<Facet> boundary_facets(const Background& bg, const std::vector<char>
     std::array<long, 3> key;
     Facet f;
   };
-  std::vector<Keyed> all;
-  for (long t = 0; t < bg.cells(); ++t) {
-    if (!alive[size_t(t)] || !touches(t))
-      continue;
-    for (const auto& tf : CellShapes::tet_face) {
-      Facet x{{bg.node(t, tf[0]), bg.node(t, tf[1]), bg.node(t, tf[2]), -1}};
-      if (!edge_node[size_t(x.v[0])] && !edge_node[size_t(x.v[1])] && !edge_node[size_t(x.v[2])])
-        continue; // all cells at these nodes are alive: an interior facet
-      std::array<long, 3> key = {x.v[0], x.v[1], x.v[2]};
-      std::sort(key.begin(), key.end());
-      all.push_back({key, x});
+  std::vector<std::vector<Keyed>> keyed(static_cast<size_t>(bg.cz));
+  detail::parallel_for(bg.cz, threads, [&](long k, int) {
+    for (long t = 6 * k * layer; t < 6 * (k + 1) * layer; ++t) {
+      if (!alive[size_t(t)] || !touches(t))
+        continue;
+      for (const auto& tf : CellShapes::tet_face) {
+        Facet x{{bg.node(t, tf[0]), bg.node(t, tf[1]), bg.node(t, tf[2]), -1}};
+        if (!edge_node[size_t(x.v[0])] && !edge_node[size_t(x.v[1])] && !edge_node[size_t(x.v[2])])
+          continue; // all cells at these nodes are alive: an interior facet
+        std::array<long, 3> key = {x.v[0], x.v[1], x.v[2]};
+        std::sort(key.begin(), key.end());
+        keyed[size_t(k)].push_back({key, x});
+      }
     }
-  }
+  });
+  std::vector<Keyed> all;
+  for (const auto& l : keyed)
+    all.insert(all.end(), l.begin(), l.end());
   std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) { return a.key < b.key; });
+  std::vector<Facet> out;
   for (size_t s = 0; s < all.size();) {
     size_t e = s;
     while (e < all.size() && all[e].key == all[s].key)
@@ -222,6 +238,98 @@ std::vector<long> nonmanifold_nodes(const std::vector<Facet>& facets) {
   return bad;
 }
 
+// Whether two boundary facets at grid node n face opposite ways (unit normals with a dot product
+// below -0.8, i.e. more than 143 degrees apart): the alive cells are one cell thin there.
+// Hexahedral facets meet at 90 or 180 degrees, Kuhn tetrahedra's also at 135 (a wedge one
+// diagonal thick, which a boundary layer still handles).
+bool two_sided(const Background& bg, const std::vector<char>& alive, long n,
+               std::vector<long>& at) {
+  constexpr double kOpposite = -0.8;
+  bg.cells_at(n, at);
+  std::vector<Eigen::Vector3d> normals;
+  const RegularGrid& g = bg.g;
+  const long nx = g.nodes(0), ny = g.nodes(1);
+  auto point = [&](long m) { return g.point(m % nx, (m / nx) % ny, m / (nx * ny)); };
+  if (!bg.tets) {
+    const long i = n % nx, j = (n / nx) % ny, k = n / (nx * ny);
+    const long node_c[3] = {i, j, k}, cubes[3] = {bg.cx, bg.cy, bg.cz};
+    for (long q : at) {
+      if (!alive[size_t(q)])
+        continue;
+      const long qc[3] = {q % bg.cx, (q / bg.cx) % bg.cy, q / (bg.cx * bg.cy)};
+      const long stride[3] = {1, bg.cx, bg.cx * bg.cy};
+      for (int a = 0; a < 3; ++a) {
+        const int s = node_c[a] == qc[a] ? 0 : 1; // the face of q through n along axis a
+        const long nb = qc[a] + (s ? 1 : -1);
+        if (nb >= 0 && nb < cubes[a] && alive[size_t(q + (s ? 1 : -1) * stride[a])])
+          continue;
+        normals.push_back(Eigen::Vector3d::Unit(a) * (s ? 1.0 : -1.0));
+      }
+    }
+  } else {
+    struct Face {
+      std::array<long, 3> key;
+      Eigen::Vector3d normal;
+    };
+    std::vector<Face> faces;
+    for (long t : at) {
+      if (!alive[size_t(t)])
+        continue;
+      for (const auto& tf : CellShapes::tet_face) {
+        const long a = bg.node(t, tf[0]), b = bg.node(t, tf[1]), c = bg.node(t, tf[2]);
+        if (a != n && b != n && c != n)
+          continue;
+        std::array<long, 3> key = {a, b, c};
+        std::sort(key.begin(), key.end());
+        faces.push_back({key, (point(b) - point(a)).cross(point(c) - point(a)).normalized()});
+      }
+    }
+    std::sort(faces.begin(), faces.end(),
+              [](const Face& x, const Face& y) { return x.key < y.key; });
+    for (size_t f = 0; f < faces.size(); ++f) // faces of one alive tetrahedron only
+      if ((f == 0 || faces[f - 1].key != faces[f].key) &&
+          (f + 1 == faces.size() || faces[f + 1].key != faces[f].key))
+        normals.push_back(faces[f].normal);
+  }
+  for (size_t a = 0; a < normals.size(); ++a)
+    for (size_t b = a + 1; b < normals.size(); ++b)
+      if (normals[a].dot(normals[b]) < kOpposite)
+        return true;
+  return false;
+}
+
+// Removes the alive cells at two-sided nodes, rechecking the nodes of removed cells until none
+// is left (the one-cell-thin parts erode away). Returns the number of cells removed.
+long erode_thin_parts(const Background& bg, std::vector<char>& alive,
+                      const std::vector<char>& edge_node) {
+  std::vector<long> work, at, at2;
+  std::vector<char> queued(edge_node.size(), 0);
+  for (size_t n = 0; n < edge_node.size(); ++n)
+    if (edge_node[n])
+      work.push_back(long(n)), queued[n] = 1;
+  long removed = 0;
+  while (!work.empty()) {
+    const long n = work.back();
+    work.pop_back();
+    queued[size_t(n)] = 0;
+    if (!two_sided(bg, alive, n, at))
+      continue;
+    bg.cells_at(n, at2);
+    for (long c : at2) {
+      if (!alive[size_t(c)])
+        continue;
+      alive[size_t(c)] = 0;
+      ++removed;
+      for (int v = 0; v < bg.corners(); ++v) {
+        const long m = bg.node(c, v);
+        if (!queued[size_t(m)])
+          work.push_back(m), queued[size_t(m)] = 1;
+      }
+    }
+  }
+  return removed;
+}
+
 } // namespace
 
 BoundaryMesh boundary_mesh(const RegularGrid& g, const Eigen::VectorXd& S,
@@ -234,41 +342,55 @@ BoundaryMesh boundary_mesh(const RegularGrid& g, const Eigen::VectorXd& S,
   if (!(o.epsilon >= 0))
     throw std::invalid_argument("boundary_mesh: epsilon must be >= 0");
   const Background bg(g, o.cells == BackgroundCells::tetrahedra);
+  const int threads = detail::resolve_threads(o.threads);
   BoundaryMesh out;
   std::vector<char> in(size_t(g.size()));
   for (long n = 0; n < g.size(); ++n) {
     in[size_t(n)] = o.rule == ZeroRule::strict ? S(n) > o.epsilon : S(n) >= -o.epsilon;
     out.inside_nodes += in[size_t(n)];
   }
-  // Stage 1: cells with all nodes inside.
+  // Stage 1: cells with all nodes inside (seed 003 §8.2 step 2: parts of the background in
+  // parallel, here layers of cubes).
   std::vector<char> alive(size_t(bg.cells()));
-  for (long c = 0; c < bg.cells(); ++c) {
-    bool all = true;
-    for (int v = 0; v < bg.corners() && all; ++v)
-      all = in[size_t(bg.node(c, v))] != 0;
-    alive[size_t(c)] = all;
-  }
+  const long per_layer = bg.cells() / bg.cz;
+  detail::parallel_for(bg.cz, threads, [&](long k, int) {
+    for (long c = k * per_layer; c < (k + 1) * per_layer; ++c) {
+      bool all = true;
+      for (int v = 0; v < bg.corners() && all; ++v)
+        all = in[size_t(bg.node(c, v))] != 0;
+      alive[size_t(c)] = all;
+    }
+  });
   std::vector<long> around;
   std::vector<char> edge_node(size_t(g.size()), 0);
   std::vector<Facet> facets;
+  const long slice = long(g.nodes(0)) * g.nodes(1);
   for (;;) {
     // Nodes next to a dead cell or the grid border.
-    for (long n = 0; n < g.size(); ++n) {
-      if (!in[size_t(n)]) {
-        edge_node[size_t(n)] = 0;
-        continue;
+    detail::parallel_for(g.nodes(2), threads, [&](long k, int) {
+      std::vector<long> at;
+      for (long n = k * slice; n < (k + 1) * slice; ++n) {
+        if (!in[size_t(n)]) {
+          edge_node[size_t(n)] = 0;
+          continue;
+        }
+        bg.cells_at(n, at);
+        bool dead = long(at.size()) < (bg.tets ? 24 : 8);
+        for (long c : at)
+          dead = dead || !alive[size_t(c)];
+        edge_node[size_t(n)] = dead;
       }
-      bg.cells_at(n, around);
-      bool dead = long(around.size()) < (bg.tets ? 24 : 8);
-      for (long c : around)
-        dead = dead || !alive[size_t(c)];
-      edge_node[size_t(n)] = dead;
-    }
-    facets = boundary_facets(bg, alive, edge_node);
+    });
+    facets = boundary_facets(bg, alive, edge_node, threads);
     // Stage 2: touching configurations.
     const std::vector<long> bad = nonmanifold_nodes(facets);
-    if (bad.empty())
-      break;
+    if (bad.empty()) {
+      const long thinned = o.thin_cleanup ? erode_thin_parts(bg, alive, edge_node) : 0;
+      out.thinned += thinned;
+      if (thinned == 0)
+        break;
+      continue;
+    }
     std::vector<long> remove;
     for (long n : bad) {
       bg.cells_at(n, around);
@@ -297,7 +419,10 @@ BoundaryMesh boundary_mesh(const RegularGrid& g, const Eigen::VectorXd& S,
       alive[size_t(c)] = 0;
     out.removed += long(remove.size());
   }
-  out.cells = std::count(alive.begin(), alive.end(), char(1));
+  for (long c = 0; c < bg.cells(); ++c)
+    if (alive[size_t(c)])
+      out.kept.push_back(c);
+  out.cells = long(out.kept.size());
   // Vertices: the facets' nodes in increasing order.
   std::vector<long> nodes;
   for (const Facet& f : facets)
@@ -328,8 +453,16 @@ BoundaryMesh boundary_mesh(const ImplicitFunction& f, const RegularGrid& g,
   Eigen::VectorXd S;
   sample_grid(f, g, S, o.threads);
   BoundaryMesh m = boundary_mesh(g, S, o);
-  if (!o.project || m.V.rows() == 0)
-    return m;
+  if (o.project)
+    project_boundary_nodes(f, g, S, m, o);
+  return m;
+}
+
+void project_boundary_nodes(const ImplicitFunction& f, const RegularGrid& g,
+                            const Eigen::VectorXd& S, BoundaryMesh& m,
+                            const BoundaryMeshOptions& o) {
+  if (m.V.rows() == 0)
+    return;
   const long nv = m.V.rows(), per = m.P.cols();
   // Vertex normals: unit facet normals at each corner, summed (seed 003 code).
   Eigen::MatrixXd N = Eigen::MatrixXd::Zero(nv, 3);
@@ -377,10 +510,40 @@ BoundaryMesh boundary_mesh(const ImplicitFunction& f, const RegularGrid& g,
       Eigen::VectorXd::Constant(long(move.size()), 0.5 * g.spacing.minCoeff());
   RootOptions ro;
   ro.threads = o.threads;
-  m.unprojected = project_along(f, P, D, h, ro);
+  std::vector<char> ok;
+  project_along(f, P, D, h, ro, &ok, o.reach, o.scan_step);
+  // Nodes whose normal scan found nothing: the gradient walk, in steps of h, as far.
+  std::vector<long> missed;
+  for (size_t r = 0; r < move.size(); ++r)
+    if (!ok[r])
+      missed.push_back(long(r));
+  if (!missed.empty()) {
+    Eigen::MatrixXd Q(long(missed.size()), 3);
+    for (size_t k = 0; k < missed.size(); ++k)
+      Q.row(long(k)) = P.row(missed[k]);
+    const int steps = int(std::max(1.0, std::min(o.reach, 1e6)));
+    m.unprojected = project_by_gradient_walk(
+        f, Q, Eigen::VectorXd::Constant(Q.rows(), h.size() ? h(0) : 1), steps, ro);
+    for (size_t k = 0; k < missed.size(); ++k)
+      P.row(missed[k]) = Q.row(long(k));
+  }
   for (size_t r = 0; r < move.size(); ++r)
     m.V.row(move[r]) = P.row(long(r));
-  return m;
+}
+
+Eigen::MatrixXi background_cell_nodes(const RegularGrid& g, BackgroundCells cells,
+                                      const std::vector<long>& ids) {
+  const Background bg(g, cells == BackgroundCells::tetrahedra);
+  // Cube corner c = x + 2y + 4z in VTK hexahedron order.
+  constexpr int kVtkCorner[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+  Eigen::MatrixXi C(long(ids.size()), bg.corners());
+  for (size_t r = 0; r < ids.size(); ++r) {
+    if (ids[r] < 0 || ids[r] >= bg.cells())
+      throw std::invalid_argument("background_cell_nodes: cell id out of range");
+    for (int v = 0; v < bg.corners(); ++v)
+      C(long(r), v) = int(bg.tets ? bg.node(ids[r], v) : bg.cube_node(ids[r], kVtkCorner[v]));
+  }
+  return C;
 }
 
 Eigen::MatrixXi triangulate_quads(const Eigen::MatrixXd& V, const Eigen::MatrixXi& Q) {

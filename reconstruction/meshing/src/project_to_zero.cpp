@@ -229,7 +229,8 @@ void project_edge_vertices(const ImplicitFunction& f, const RegularGrid& g,
 }
 
 long project_along(const ImplicitFunction& f, Eigen::MatrixXd& P, const Eigen::MatrixXd& D,
-                   const Eigen::VectorXd& h, const RootOptions& o, std::vector<char>* moved) {
+                   const Eigen::VectorXd& h, const RootOptions& o, std::vector<char>* moved,
+                   double reach, double scan_step) {
   if (!f.value)
     throw std::invalid_argument("project_along: the implicit function has no value");
   const long n = long(P.rows());
@@ -237,8 +238,10 @@ long project_along(const ImplicitFunction& f, Eigen::MatrixXd& P, const Eigen::M
     throw std::invalid_argument("project_along: P, D must be #P by 3 and h #P");
   if (!(h.array() > 0).all())
     throw std::invalid_argument("project_along: step lengths must be > 0");
-  constexpr int kScanSteps = 10000; // seed 003 code: at most 10000 steps of 0.01 h
-  constexpr double kScanStep = 0.01;
+  if (!(reach >= 1) || !(reach <= 1e6) || !(scan_step > 0) || !(reach / scan_step <= 1e7))
+    throw std::invalid_argument("project_along: reach in [1, 1e6], scan_step > 0");
+  const double kScanStep = scan_step; // seed 003 code: 10000 steps of 0.01 h (reach 100)
+  const int kScanSteps = int(std::lround(reach / kScanStep));
   return missed_over_chunks(n, o, moved, [&](long r0, long m) {
     Points3 Q = P.middleRows(r0, m);
     Eigen::VectorXd F0(m);

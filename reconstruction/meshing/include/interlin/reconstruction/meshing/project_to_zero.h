@@ -48,10 +48,9 @@ void project_edge_vertices(const ImplicitFunction& f, const RegularGrid& g,
 // Seed 003's findBorder: projects each point P_i onto F = 0 along the line through it with
 // direction D_i (the outward normal, pointing from F > 0 to F < 0). From an inside point it steps
 // outward, from an outside point inward: first one step h_i; if F keeps its sign, a scan in
-// steps of 0.01 h_i up to 10000 steps (100 h_i); the first sign change is then narrowed by
-// roots_on_segments. A point with F = 0 stays; a point whose scan finds no change stays and is
-// reported.
-// Inputs:
+// steps of scan_step x h_i up to reach x h_i (the seed code: steps of 0.01 h_i, reach 100); the
+// first sign change is then narrowed by roots_on_segments. A point with F = 0 stays; a point whose
+// scan finds no change stays and is reported. Inputs:
 //   f  implicit function
 //   D  #P by 3 directions (any length > 0; normalised here; a zero row leaves its point)
 //   h  #P step lengths (> 0)
@@ -61,7 +60,7 @@ void project_edge_vertices(const ImplicitFunction& f, const RegularGrid& g,
 //           per point whether it is on the surface now (projected, or F = 0 already)
 long project_along(const ImplicitFunction& f, Eigen::MatrixXd& P, const Eigen::MatrixXd& D,
                    const Eigen::VectorXd& h, const RootOptions& o = {},
-                   std::vector<char>* moved = nullptr);
+                   std::vector<char>* moved = nullptr, double reach = 100, double scan_step = 0.01);
 
 // Seed 003 code's projection of an arbitrary point (findBorder(p, h) with a gradient walk): steps
 // of length h_i along the local direction of -grad F / |grad F| towards F = 0 (outward from an

@@ -1,0 +1,357 @@
+// Seed 003, digest §6.2: the solid-element method for tetrahedra and hexahedra.
+#include "interlin/reconstruction/meshing/volume_mesh.h"
+
+#include "interlin/reconstruction/meshing/project_to_zero.h"
+#include "interlin/reconstruction/meshing/surface_smoothing.h"
+
+#include "parallel.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace interlin {
+
+namespace {
+
+// A boundary node's surface point is at most a cell diagonal (sqrt 3 h) away when the grid
+// resolves the body there, but the smoothed normal may run at a slant; the projection looks 4
+// cells (8 steps of h/2) far. Nodes beyond that
+// sit under features thinner than a cell and are reported (unprojected).
+constexpr double kLayerReach = 8;
+
+constexpr int kTetFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+constexpr int kHexFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+// Nodes with |F| <= epsilon none of whose 26 neighbours is outside (F < -epsilon) lie on a sheet
+// where F touches zero inside the body (R-function unions of parts that meet face to face, such
+// as the impeller's blades and shroud at z = 4): they are interior, not boundary. Their values are
+// set to 2 epsilon (inside by either rule). Returns their number.
+long fill_zero_sheets(const RegularGrid& g, Eigen::VectorXd& S, double epsilon, int threads) {
+  const long nx = g.nodes(0), ny = g.nodes(1), nz = g.nodes(2);
+  std::vector<std::vector<long>> per_slice(static_cast<size_t>(nz));
+  detail::parallel_for(nz, detail::resolve_threads(threads), [&](long k, int) {
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i) {
+        if (!(std::abs(S(g.index(i, j, k))) <= epsilon))
+          continue;
+        bool outside = false;
+        for (long dk = -1; dk <= 1 && !outside; ++dk)
+          for (long dj = -1; dj <= 1 && !outside; ++dj)
+            for (long di = -1; di <= 1 && !outside; ++di) {
+              const long a = i + di, b = j + dj, c = k + dk;
+              outside = a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz ||
+                        !(S(g.index(a, b, c)) >= -epsilon);
+            }
+        if (!outside)
+          per_slice[size_t(k)].push_back(g.index(i, j, k));
+      }
+  });
+  long filled = 0;
+  for (const auto& l : per_slice)
+    for (long n : l)
+      S(n) = 2 * epsilon, ++filled;
+  return filled;
+}
+
+// Inside nodes (by the rule) with F <= 0 at `distance` from them down the gradient (nearer to the
+// surface than that) are set to -1 (outside). Only nodes of a cube with a node that is not inside
+// are candidates: any node nearer to the surface than one cell is one (distance < h). Returns the
+// number of nodes dropped.
+long drop_near_surface(const ImplicitFunction& f, const RegularGrid& g, Eigen::VectorXd& S,
+                       const BoundaryMeshOptions& bo, double distance) {
+  auto inside = [&](double v) {
+    return bo.rule == ZeroRule::strict ? v > bo.epsilon : v >= -bo.epsilon;
+  };
+  const long nx = g.nodes(0), ny = g.nodes(1), nz = g.nodes(2), slice = nx * ny;
+  std::vector<std::vector<long>> per_slice(static_cast<size_t>(nz));
+  detail::parallel_for(nz, detail::resolve_threads(bo.threads), [&](long k, int) {
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i) {
+        const long n = g.index(i, j, k);
+        if (!inside(S(n)))
+          continue;
+        bool near = false;
+        for (long dk = -1; dk <= 1 && !near; ++dk)
+          for (long dj = -1; dj <= 1 && !near; ++dj)
+            for (long di = -1; di <= 1 && !near; ++di) {
+              const long a = i + di, b = j + dj, c = k + dk;
+              near = a >= 0 && b >= 0 && c >= 0 && a < nx && b < ny && c < nz &&
+                     !inside(S(g.index(a, b, c)));
+            }
+        if (near)
+          per_slice[size_t(k)].push_back(n);
+      }
+  });
+  std::vector<long> cand;
+  for (const auto& l : per_slice)
+    cand.insert(cand.end(), l.begin(), l.end());
+  Points3 P(long(cand.size()), 3);
+  for (size_t r = 0; r < cand.size(); ++r) {
+    const long n = cand[r];
+    P.row(long(r)) = g.point(n % nx, (n / nx) % ny, n / slice).transpose();
+  }
+  Eigen::VectorXd F(P.rows());
+  Points3 G(P.rows(), 3);
+  if (f.gradient) {
+    f.gradient(P, F, G);
+  } else { // central differences, step 1e-3 h
+    const double d = 1e-3 * g.spacing.minCoeff();
+    f.value(P, F);
+    for (int a = 0; a < 3; ++a) {
+      Points3 Q = P;
+      Eigen::VectorXd Fp(P.rows()), Fm(P.rows());
+      Q.col(a).array() += d;
+      f.value(Q, Fp);
+      Q.col(a).array() -= 2 * d;
+      f.value(Q, Fm);
+      G.col(a) = (Fp - Fm) / (2 * d);
+    }
+  }
+  // The point `distance` down the gradient: the node is near the surface when F has changed sign
+  // there (F / |grad F| alone misleads where an R-function joins parts: inside the union the
+  // gradient of the part that vanishes on the seam dominates).
+  Points3 Q = P;
+  for (long r = 0; r < P.rows(); ++r) {
+    const double grad = G.row(r).norm();
+    if (std::isfinite(grad) && grad > 0)
+      Q.row(r) -= distance / grad * G.row(r);
+  }
+  Eigen::VectorXd FQ(Q.rows());
+  f.value(Q, FQ);
+  long dropped = 0;
+  for (size_t r = 0; r < cand.size(); ++r)
+    if (!(FQ(long(r)) > 0) && G.row(long(r)).allFinite() && G.row(long(r)).norm() > 0) {
+      S(cand[r]) = -1;
+      ++dropped;
+    }
+  return dropped;
+}
+
+// The 3 tetrahedra of the prism with bottom b[0..2] (outward, counter-clockwise from outside)
+// and top t[0..2] (their projections; every top index exceeds every bottom index). Dompierre et
+// al.'s rule: rotate so the smallest index is local vertex 0, then each quadrilateral face is cut
+// along the diagonal from its smallest index, which neighbouring prisms share.
+void split_prism(const int b[3], const int t[3], std::array<std::array<int, 4>, 3>& out) {
+  const int r = int(std::min_element(b, b + 3) - b);
+  const int v[6] = {b[r], b[(r + 1) % 3], b[(r + 2) % 3], t[r], t[(r + 1) % 3], t[(r + 2) % 3]};
+  // Local tetrahedra, positively oriented on the right prism (bottom counter-clockwise seen from
+  // the top).
+  static constexpr int kFirst[3][4] = {{0, 1, 2, 5}, {0, 1, 5, 4}, {0, 4, 5, 3}};
+  static constexpr int kSecond[3][4] = {{0, 1, 2, 4}, {0, 4, 2, 5}, {0, 4, 5, 3}};
+  const auto& local = std::min(v[1], v[5]) < std::min(v[2], v[4]) ? kFirst : kSecond;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 4; ++j)
+      out[size_t(k)][size_t(j)] = v[local[k][j]];
+}
+
+// F = 0 as a sliding surface: normals from the gradient (central differences with step 1e-3 h
+// without one), projection by the gradient walk with steps of h / 4.
+SlidingSurface implicit_surface(const ImplicitFunction& f, double h) {
+  SlidingSurface s;
+  s.normals = [f, h](const Eigen::MatrixXd& P) { return outward_directions(f, P, 1e-3 * h); };
+  s.project = [f, h](Eigen::MatrixXd& P) {
+    std::vector<char> ok;
+    project_by_gradient_walk(f, P, Eigen::VectorXd::Constant(P.rows(), h / 4), 100, {}, &ok);
+    return ok;
+  };
+  return s;
+}
+
+// Rounds of boundary sliding and interior sweeps while elements are inverted (at most
+// kUntangleRounds): the boundary facets that projection folded are opened up on the surface.
+void untangle_boundary(const ImplicitFunction& f, double h, VolumeMesh& vm,
+                       const VolumeSmoothingOptions& so, VolumeMeshInfo& out) {
+  constexpr int kUntangleRounds = 4;
+  VolumeSmoothingOptions again = so;
+  again.sweeps = 2;
+  again.t = out.smoothing.t;
+  const SlidingSurface surface = implicit_surface(f, h);
+  for (int r = 0; r < kUntangleRounds; ++r) {
+    if (slide_boundary_nodes(vm.V, vm.C, vm.boundary, surface, out.smoothing.t) == 0)
+      break;
+    const VolumeSmoothingReport rep = smooth_volume(vm.V, vm.C, vm.boundary, again);
+    out.smoothing.energy.push_back(rep.energy.back());
+    out.smoothing.inverted.push_back(rep.inverted.back());
+    out.smoothing.moves += rep.moves;
+  }
+}
+
+} // namespace
+
+Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C) {
+  if (C.cols() != 4 && C.cols() != 8)
+    throw std::invalid_argument("boundary_facets: C must be #C by 4 or #C by 8");
+  const bool tets = C.cols() == 4;
+  const int faces = tets ? 4 : 6, per = tets ? 3 : 4;
+  struct Keyed {
+    std::array<int, 4> key;
+    long element;
+    int face;
+  };
+  std::vector<Keyed> all;
+  all.reserve(size_t(C.rows() * faces));
+  for (long e = 0; e < C.rows(); ++e)
+    for (int f = 0; f < faces; ++f) {
+      std::array<int, 4> key = {0, 0, 0, -1};
+      for (int j = 0; j < per; ++j)
+        key[size_t(j)] = C(e, tets ? kTetFace[f][j] : kHexFace[f][j]);
+      std::sort(key.begin(), key.begin() + per);
+      all.push_back({key, e, f});
+    }
+  std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) {
+    return a.key != b.key ? a.key < b.key : a.element < b.element;
+  });
+  std::vector<std::pair<long, int>> once;
+  for (size_t s = 0; s < all.size();) {
+    size_t e = s;
+    while (e < all.size() && all[e].key == all[s].key)
+      ++e;
+    if (e - s == 1)
+      once.emplace_back(all[s].element, all[s].face);
+    s = e;
+  }
+  std::sort(once.begin(), once.end());
+  Eigen::MatrixXi B(long(once.size()), per);
+  for (size_t r = 0; r < once.size(); ++r)
+    for (int j = 0; j < per; ++j)
+      B(long(r), j) =
+          C(once[r].first, tets ? kTetFace[once[r].second][j] : kHexFace[once[r].second][j]);
+  return B;
+}
+
+VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
+                       VolumeMeshInfo* info) {
+  if (!f.value)
+    throw std::invalid_argument("volume_mesh: the implicit function has no value");
+  if (!(o.margin >= 0 && o.margin < 1))
+    throw std::invalid_argument("volume_mesh: margin must be in [0, 1)");
+  const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
+  if (box.isEmpty())
+    throw std::invalid_argument("volume_mesh: no box (neither given nor the function's)");
+  const RegularGrid g =
+      o.cell > 0 ? grid_with_cell(box, o.cell) : grid_with_resolution(box, o.resolution);
+  auto say = [&](const std::string& m) {
+    if (o.progress)
+      o.progress(m);
+  };
+  VolumeMeshInfo local;
+  VolumeMeshInfo& out = info ? *info : local;
+  out = VolumeMeshInfo{};
+  out.grid = g;
+  const bool tets = o.elements == VolumeElements::tetrahedra;
+
+  say("grid " + std::to_string(g.nodes(0)) + " x " + std::to_string(g.nodes(1)) + " x " +
+      std::to_string(g.nodes(2)) + " nodes, sampling F");
+  Eigen::VectorXd S;
+  sample_grid(f, g, S, o.threads);
+  BoundaryMeshOptions bo;
+  bo.cells = tets ? BackgroundCells::tetrahedra : BackgroundCells::hexahedra;
+  bo.rule = o.rule;
+  bo.epsilon = o.epsilon;
+  bo.threads = o.threads;
+  bo.reach = kLayerReach;
+  bo.scan_step = 0.25; // features thinner than h / 8 along the normal are below the grid anyway
+  if (o.margin > 0)    // not in the seed's configurations: they keep its counts
+    fill_zero_sheets(g, S, o.epsilon, o.threads);
+  if (o.margin > 0)
+    out.dropped_nodes = drop_near_surface(f, g, S, bo, o.margin * g.spacing.minCoeff());
+  say("inner cells and boundary facets");
+  bo.thin_cleanup = o.margin > 0; // the seed's configurations keep every cell
+  BoundaryMesh m = boundary_mesh(g, S, bo);
+  out.inside_nodes = m.inside_nodes + out.dropped_nodes;
+  out.removed_cells = m.removed + m.thinned;
+  out.inner_cells = m.cells;
+  if (m.cells == 0) { // nothing inside: empty, with the shapes of a mesh
+    VolumeMesh none;
+    none.V.resize(0, 3);
+    none.C.resize(0, tets ? 4 : 8);
+    none.B.resize(0, tets ? 3 : 4);
+    return none;
+  }
+  say("projecting " + std::to_string(m.V.rows()) + " boundary nodes onto F = 0");
+  project_boundary_nodes(f, g, S, m, bo);
+  out.unprojected = m.unprojected;
+
+  // Nodes: the grid nodes of the kept cells (in grid order), then the projected copies of the
+  // boundary nodes.
+  const Eigen::MatrixXi inner = background_cell_nodes(g, bo.cells, m.kept);
+  std::vector<int> used(inner.data(), inner.data() + inner.size());
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  auto index_of = [&](int grid_node) {
+    return int(std::lower_bound(used.begin(), used.end(), grid_node) - used.begin());
+  };
+  const long n_inner = long(used.size()), n_top = m.V.rows();
+  VolumeMesh vm;
+  vm.V.resize(n_inner + n_top, 3);
+  const long nx = g.nodes(0), ny = g.nodes(1);
+  for (long r = 0; r < n_inner; ++r) {
+    const long n = used[size_t(r)];
+    vm.V.row(r) = g.point(n % nx, (n / nx) % ny, n / (nx * ny)).transpose();
+  }
+  vm.V.bottomRows(n_top) = m.V;
+  vm.boundary.assign(size_t(n_inner + n_top), 0);
+  std::fill(vm.boundary.begin() + n_inner, vm.boundary.end(), 1);
+
+  // Elements: the inner cells, then the boundary layer.
+  const long facets = m.P.rows(), per_facet = tets ? 3 : 1;
+  out.layer_elements = facets * per_facet;
+  vm.C.resize(inner.rows() + out.layer_elements, tets ? 4 : 8);
+  for (long e = 0; e < inner.rows(); ++e)
+    for (long j = 0; j < inner.cols(); ++j)
+      vm.C(e, j) = index_of(inner(e, j));
+  vm.B.resize(facets, m.P.cols());
+  for (long q = 0; q < facets; ++q) {
+    const long row = inner.rows() + q * per_facet;
+    int b[4], t[4];
+    for (int j = 0; j < int(m.P.cols()); ++j) {
+      b[j] = index_of(m.node(m.P(q, j)));
+      t[j] = int(n_inner) + m.P(q, j);
+      vm.B(q, j) = t[j];
+    }
+    if (tets) {
+      std::array<std::array<int, 4>, 3> three;
+      split_prism(b, t, three);
+      for (int k = 0; k < 3; ++k)
+        for (int j = 0; j < 4; ++j)
+          vm.C(row + k, j) = three[size_t(k)][size_t(j)];
+    } else {
+      vm.C.row(row) << b[0], b[1], b[2], b[3], t[0], t[1], t[2], t[3];
+    }
+  }
+
+  if (o.surface_sweeps > 0) {
+    say("smoothing the boundary surface, " + std::to_string(o.surface_sweeps) +
+        " sweeps (functional 12)");
+    Eigen::MatrixXd Vb = m.V;
+    Eigen::MatrixXi Fb = m.P;
+    if (!tets)
+      Fb = triangulate_quads(Vb, Fb);
+    SurfaceSmoothingOptions so;
+    so.iterations = o.surface_sweeps;
+    so.threads = o.threads;
+    smooth_on_surface(f, Vb, Fb, so);
+    vm.V.bottomRows(n_top) = Vb;
+  }
+  if (o.interior_sweeps > 0) {
+    say("untangling the boundary surface (functional 13 on F = 0)");
+    untangle_surface(vm.V, vm.B, implicit_surface(f, g.spacing.minCoeff()));
+    say("smoothing the interior, " + std::to_string(o.interior_sweeps) + " sweeps (functional 15)");
+    VolumeSmoothingOptions so;
+    so.sweeps = o.interior_sweeps;
+    so.threads = o.threads;
+    out.smoothing = smooth_volume(vm.V, vm.C, vm.boundary, so);
+    untangle_boundary(f, g.spacing.minCoeff(), vm, so, out);
+  }
+  Eigen::VectorXd Fv(n_top);
+  f.value(vm.V.bottomRows(n_top), Fv);
+  out.max_boundary_f = n_top > 0 ? Fv.cwiseAbs().maxCoeff() : 0;
+  return vm;
+}
+
+} // namespace interlin

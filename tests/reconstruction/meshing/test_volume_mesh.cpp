@@ -1,0 +1,194 @@
+// Seed 003's solid-element method (digest §6.2): the seed's published counts of body (11) in its
+// own configurations, and on a family of closed-form bodies with the defaults: no inverted
+// element, every boundary node on F = 0, a conforming mesh whose boundary is the facet list, the
+// volume converging to the exact one at second order, the same mesh for any thread count.
+#include "interlin/reconstruction/meshing/boundary_mesh.h"
+#include "interlin/reconstruction/meshing/mesh_check.h"
+#include "interlin/reconstruction/meshing/volume_mesh.h"
+#include "interlin/reconstruction/meshing/volume_quality.h"
+
+#include "support/test_implicits.h"
+#include "support/test_support.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+using namespace interlin;
+
+namespace {
+
+// Boundary facets as a sorted list of sorted node tuples (orientation compared separately).
+std::vector<std::array<int, 4>> facet_set(const Eigen::MatrixXi& B) {
+  std::vector<std::array<int, 4>> out;
+  for (long f = 0; f < B.rows(); ++f) {
+    std::array<int, 4> k = {-1, -1, -1, -1}; // triangles: the last entry stays -1, first
+    for (long j = 0; j < B.cols(); ++j)
+      k[size_t(j)] = B(f, j);
+    std::sort(k.begin(), k.end());
+    out.push_back(k);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+Eigen::MatrixXi triangles(const VolumeMesh& m) {
+  return m.B.cols() == 4 ? triangulate_quads(m.V, m.B) : m.B;
+}
+
+// Checks shared by every mesh: conforming (the faces used once are exactly B, outward), the
+// boundary closed and oriented, the nodes flagged boundary exactly those of B, the element volume
+// equal to the volume enclosed by B for tetrahedra (flat faces).
+void check_structure(const VolumeMesh& m) {
+  REQUIRE(m.C.rows() > 0);
+  CHECK(facet_set(boundary_facets(m.C)) == facet_set(m.B));
+  const MeshReport r = check_mesh(m.V, triangles(m));
+  CHECK(r.boundary_edges == 0);
+  CHECK(r.nonmanifold_edges == 0);
+  CHECK(r.consistently_oriented);
+  std::vector<char> on(size_t(m.V.rows()), 0);
+  for (long i = 0; i < m.B.size(); ++i)
+    on[size_t(m.B.data()[i])] = 1;
+  CHECK(on == m.boundary);
+  const VolumeQuality q = volume_quality(m.V, m.C);
+  CHECK(r.volume > 0);
+  if (m.C.cols() == 4) // sum of tetrahedra = enclosed volume, exactly up to round-off
+    CHECK(q.volume == Approx(r.volume).epsilon(1e-12));
+}
+
+RegularGrid seed_grid() {
+  RegularGrid g;
+  g.origin.setConstant(-1);
+  g.spacing.setConstant(0.1);
+  g.nodes.setConstant(21);
+  return g;
+}
+
+} // namespace
+
+TEST_CASE("volume_mesh: seed 003 body (11) in the seed's configurations gives its counts",
+          "[volume]") {
+  // Digest §5.2/§11.1: tetrahedra (strict rule) 12948 inner cells and 2158 / 4332 boundary
+  // nodes / triangles; hexahedra (inclusive rule) 2976 cells and 3064 / 3072. Each boundary
+  // facet adds one hexahedron or a prism of 3 tetrahedra (§6.2), each boundary node one node.
+  struct Row {
+    VolumeElements elements;
+    ZeroRule rule;
+    long inner, boundary_nodes, facets, inner_nodes;
+  };
+  const Row rows[] = {{VolumeElements::tetrahedra, ZeroRule::strict, 12948, 2158, 4332, 3344},
+                      {VolumeElements::hexahedra, ZeroRule::inclusive, 2976, 3064, 3072, 4628}};
+  for (const Row& row : rows) {
+    VolumeMeshOptions o;
+    o.elements = row.elements;
+    o.rule = row.rule;
+    o.margin = 0;
+    o.interior_sweeps = 0;
+    o.box = seed_grid().box();
+    o.resolution = 20;
+    VolumeMeshInfo info;
+    const VolumeMesh m = volume_mesh(test::body11_function(), o, &info);
+    INFO((row.elements == VolumeElements::tetrahedra ? "tetrahedra" : "hexahedra"));
+    CHECK(info.grid.nodes.isApprox(seed_grid().nodes));
+    CHECK(info.inner_cells == row.inner);
+    CHECK(info.removed_cells == 0);
+    CHECK(m.B.rows() == row.facets);
+    const long per = row.elements == VolumeElements::tetrahedra ? 3 : 1;
+    CHECK(m.C.rows() == row.inner + per * row.facets);
+    CHECK(std::count(m.boundary.begin(), m.boundary.end(), char(1)) == row.boundary_nodes);
+    // Inner nodes: every inside node is a node of some kept cell here.
+    CHECK(m.V.rows() - row.boundary_nodes == row.inner_nodes);
+    check_structure(m);
+  }
+}
+
+TEST_CASE("volume_mesh: defaults give valid meshes of closed-form bodies", "[volume]") {
+  struct Body {
+    const char* name;
+    ImplicitFunction f;
+    double volume; // exact, 0 when not known in closed form
+    int resolution;
+  };
+  const double pi = 3.14159265358979323846;
+  const Body bodies[] = {{"sphere", test::sphere(1.0), 4 * pi / 3, 16},
+                         {"torus", test::torus(1.0, 0.4), 2 * pi * pi * 1.0 * 0.16, 24},
+                         {"cube", test::r0_cube(0.8), 0.8 * 0.8 * 0.8 * 8, 16},
+                         {"body (11)", test::body11_function(), 0, 24}};
+  for (const Body& b : bodies)
+    for (const VolumeElements e : {VolumeElements::tetrahedra, VolumeElements::hexahedra}) {
+      VolumeMeshOptions o;
+      o.elements = e;
+      o.resolution = b.resolution;
+      VolumeMeshInfo info;
+      const VolumeMesh m = volume_mesh(b.f, o, &info);
+      INFO(b.name << (e == VolumeElements::tetrahedra ? ", tetrahedra" : ", hexahedra"));
+      check_structure(m);
+      const VolumeQuality q = volume_quality(m.V, m.C);
+      CHECK(q.inverted == 0);
+      CHECK(q.min_scaled_jacobian > 0);
+      CHECK(info.unprojected == 0);
+      CHECK(info.max_boundary_f < 1e-9);
+      if (b.volume > 0) // coarse grids: 3 % (the convergence test below is the sharp one)
+        CHECK(std::abs(q.volume - b.volume) < 0.03 * b.volume);
+    }
+}
+
+TEST_CASE("volume_mesh: the volume converges at second order (sphere, torus)", "[volume]") {
+  const double pi = 3.14159265358979323846;
+  const struct {
+    ImplicitFunction f;
+    double exact;
+  } cases[] = {{test::sphere(1.0), 4 * pi / 3}, {test::torus(1.0, 0.4), 2 * pi * pi * 0.16}};
+  for (const auto& c : cases)
+    for (const VolumeElements e : {VolumeElements::tetrahedra, VolumeElements::hexahedra}) {
+      std::vector<double> h, err;
+      for (int n : {16, 24, 36, 54}) { // from 16: the torus tube is 3 cells thick at 12
+        VolumeMeshOptions o;
+        o.elements = e;
+        o.resolution = n;
+        VolumeMeshInfo info;
+        const VolumeMesh m = volume_mesh(c.f, o, &info);
+        h.push_back(info.grid.spacing(0));
+        err.push_back(std::abs(volume_quality(m.V, m.C).volume - c.exact));
+      }
+      const double order = test::fitted_order(h, err);
+      INFO("order " << order << ", errors " << err[0] << " .. " << err.back());
+      // Flat facets (tetrahedra) or bilinear ones (hexahedra) through points on a smooth surface:
+      // O(h^2) volume error.
+      CHECK(order > 1.7);
+    }
+}
+
+TEST_CASE("volume_mesh: the same mesh for any thread count", "[volume]") {
+  for (const VolumeElements e : {VolumeElements::tetrahedra, VolumeElements::hexahedra}) {
+    VolumeMeshOptions o;
+    o.elements = e;
+    o.resolution = 20;
+    o.threads = 1;
+    const VolumeMesh a = volume_mesh(test::body11_function(), o);
+    o.threads = 3;
+    const VolumeMesh b = volume_mesh(test::body11_function(), o);
+    CHECK(a.C == b.C);
+    CHECK(a.B == b.B);
+    CHECK(a.V == b.V);
+  }
+}
+
+TEST_CASE("volume_mesh: bad options and empty bodies", "[volume]") {
+  VolumeMeshOptions o;
+  o.margin = 1.5;
+  CHECK_THROWS_AS(volume_mesh(test::sphere(1), o), std::invalid_argument);
+  o = {};
+  ImplicitFunction nobox = test::sphere(1);
+  nobox.box = Eigen::AlignedBox3d();
+  CHECK_THROWS_AS(volume_mesh(nobox, o), std::invalid_argument);
+  // A ball smaller than a cell: nothing inside.
+  o.resolution = 2;
+  const VolumeMesh m = volume_mesh(test::sphere(0.2), o);
+  CHECK(m.C.rows() == 0);
+  CHECK(m.C.cols() == 4); // shaped like a mesh: volume_quality and the writers take it
+  CHECK(volume_quality(m.V, m.C).elements == 0);
+}
