@@ -2,6 +2,7 @@
 // sub-boxes, vertices projected onto F = 0), optional smoothing and edge flips, mesh files and a
 // preview.
 #include "cli_common.h"
+#include "cmd_mesh_volume.h"
 #include "commands.h"
 
 #include "interlin/interflatation/rfunctions/model.h"
@@ -24,6 +25,7 @@ const char* const kMeshHelp =
     R"(interlin mesh - R-function model -> closed triangle mesh of the body F > 0
 
 Usage: interlin mesh MODEL.rf -o OUT [-o OUT ...] [options]
+       interlin mesh MODEL.rf -o OUT.msh --volume tet|hex [options]
 
 MODEL.rf   a model file (docs/formats.md, "R-function model files"), e.g. data/models/*.rf
 
@@ -68,6 +70,23 @@ Examples:
   interlin mesh data/models/uav.rf -o uav.ply -o uav.png --cell 0.02
   interlin mesh data/models/valve.rf -o valve.obj --resolution 96 --smooth 4 --flip
   interlin mesh data/models/car.rf -o car_fig5.stl --var fig5 --set xs=7
+
+Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element analysis):
+  outputs .vtu (ParaView), .msh (Gmsh 4.1), .inp (Abaqus/CalculiX), plus .stl .obj .ply .off
+  (the boundary surface) and .png. The grid cells wholly inside the body (nodes nearer to
+  F = 0 than the margin count as outside) are kept; each boundary facet and its projection
+  onto F = 0 make one hexahedron, or a prism cut into 3 tetrahedra; then the interior nodes
+  minimise seed 003's corner functional (15) and folded boundary facets slide on F = 0.
+  --volume tet|hex       tetrahedra (the grid's cubes cut into 6) or hexahedra
+  --margin M             nodes nearer to F = 0 than M cells are outside (default 0.35)
+  --sweeps K             sweeps of the interior functional (default 8; seed 003: 8-10)
+  --seed-rule            seed 003's own classification (margin 0; F > 0 for tetrahedra,
+                         F >= 0 for hexahedra): reproduces its published counts
+  --smooth K             K sweeps of functional (12) over the boundary nodes
+  The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
+  inverted elements (an error unless 0), max |F| at the boundary nodes and the volume.
+  interlin mesh data/models/impeller.rf -o impeller.msh --volume tet --cell 0.1
+  interlin mesh data/models/body11.rf -o body11.inp --volume hex --resolution 20 --seed-rule
 )";
 
 namespace {
@@ -131,9 +150,21 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   const std::vector<std::string> outputs = a.all("output");
   if (outputs.empty())
     throw UsageError("nothing to do: give -o FILE");
+  const bool volume = a.has("volume");
+  for (const char* only : {"margin", "sweeps", "seed-rule"})
+    if (!volume && a.has(only))
+      throw UsageError(std::string("--") + only + " needs --volume tet|hex");
+  if (volume && (a.has("subboxes") || a.has("no-project") || a.has("flip")))
+    throw UsageError("--subboxes, --no-project and --flip apply to surface meshes, not --volume");
   std::map<std::string, Kind> kinds;
-  for (const std::string& out : outputs)
-    kinds[out] = output_kind(out);
+  for (const std::string& out : outputs) {
+    if (volume && !volume_output_ok(out))
+      throw UsageError("output '" + out +
+                       "': unknown extension for --volume (use .vtu .msh .inp .stl .obj .ply .off "
+                       ".png)");
+    if (!volume)
+      kinds[out] = output_kind(out);
+  }
   check_outputs({input}, outputs);
 
   const Progress progress{quiet};
@@ -155,6 +186,21 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
                                     std::to_string(g.nodes(ax) - 1) + " cells");
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
+  }
+  if (volume) {
+    VolumeRequest r;
+    r.input = input;
+    r.box = box;
+    r.resolution = o.resolution;
+    r.cell = o.cell;
+    r.threads = o.threads;
+    r.smooth = smooth;
+    r.outputs = outputs;
+    r.quiet = quiet;
+    r.azimuth = azimuth;
+    r.elevation = elevation;
+    mesh_volume(a, f, r, progress, written);
+    return;
   }
   o.progress = progress;
   Eigen::MatrixXd V;
@@ -230,24 +276,24 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
 } // namespace
 
 int run_mesh(int argc, const char* const* argv) {
-  return run_command("mesh", kMeshHelp, argc, argv,
-                     {{"output", 'o', true, true},
-                      {"resolution", 0, true, false},
-                      {"cell", 0, true, false},
-                      {"box", 0, true, false},
-                      {"threads", 0, true, false},
-                      {"subboxes", 0, true, false},
-                      {"no-project", 0, false, false},
-                      {"smooth", 0, true, false},
-                      {"flip", 0, false, false},
-                      {"set", 0, true, true},
-                      {"var", 0, true, false},
-                      {"view", 0, true, false},
-                      {"max-grid-nodes", 0, true, false},
-                      {"max-triangles", 0, true, false},
-                      {"mesh-precision", 0, true, false},
-                      {"max-model-size", 0, true, false}},
-                     mesh_main);
+  std::vector<OptionSpec> spec = volume_options();
+  spec.insert(spec.end(), {{"output", 'o', true, true},
+                           {"resolution", 0, true, false},
+                           {"cell", 0, true, false},
+                           {"box", 0, true, false},
+                           {"threads", 0, true, false},
+                           {"subboxes", 0, true, false},
+                           {"no-project", 0, false, false},
+                           {"smooth", 0, true, false},
+                           {"flip", 0, false, false},
+                           {"set", 0, true, true},
+                           {"var", 0, true, false},
+                           {"view", 0, true, false},
+                           {"max-grid-nodes", 0, true, false},
+                           {"max-triangles", 0, true, false},
+                           {"mesh-precision", 0, true, false},
+                           {"max-model-size", 0, true, false}});
+  return run_command("mesh", kMeshHelp, argc, argv, spec, mesh_main);
 }
 
 } // namespace interlin::cli

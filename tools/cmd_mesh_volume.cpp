@@ -1,0 +1,152 @@
+// interlin mesh --volume: implicit solid -> tetrahedral or hexahedral mesh for analysis.
+#include "cmd_mesh_volume.h"
+
+#include "interlin/reconstruction/io/input_error.h"
+#include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/io/preview.h"
+#include "interlin/reconstruction/io/volume_mesh_io.h"
+#include "interlin/reconstruction/meshing/boundary_mesh.h"
+#include "interlin/reconstruction/meshing/volume_mesh.h"
+#include "interlin/reconstruction/meshing/volume_quality.h"
+
+#include <algorithm>
+#include <iostream>
+#include <stdexcept>
+#include <thread>
+
+namespace interlin::cli {
+
+namespace {
+
+bool surface_output(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off";
+}
+
+// The boundary surface as a triangle mesh of its own nodes (quadrilaterals split along their
+// shorter diagonal).
+void boundary_surface(const VolumeMesh& m, Eigen::MatrixXd& V, Eigen::MatrixXi& F) {
+  std::vector<int> index(size_t(m.V.rows()), -1);
+  int n = 0;
+  for (long v = 0; v < m.V.rows(); ++v)
+    if (m.boundary[size_t(v)])
+      index[size_t(v)] = n++;
+  V.resize(n, 3);
+  for (long v = 0; v < m.V.rows(); ++v)
+    if (index[size_t(v)] >= 0)
+      V.row(index[size_t(v)]) = m.V.row(v);
+  F = m.B.cols() == 4 ? triangulate_quads(m.V, m.B) : m.B;
+  for (long i = 0; i < F.size(); ++i)
+    F.data()[i] = index[size_t(F.data()[i])];
+}
+
+VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r) {
+  VolumeMeshOptions o;
+  const std::string kind = parse_choice("volume", a.get("volume"), {"tet", "hex"});
+  o.elements = kind == "hex" ? VolumeElements::hexahedra : VolumeElements::tetrahedra;
+  o.box = r.box;
+  o.resolution = r.resolution;
+  o.cell = r.cell;
+  o.threads = r.threads;
+  o.surface_sweeps = r.smooth;
+  o.interior_sweeps = parse_int("sweeps", a.get("sweeps", "8"), 0, 1000);
+  if (a.has("seed-rule") && a.has("margin"))
+    throw UsageError("--seed-rule and --margin exclude each other");
+  if (a.has("margin")) {
+    o.margin = parse_double("margin", a.get("margin"));
+    if (!(o.margin >= 0 && o.margin < 1))
+      throw UsageError("--margin: expected a number in [0, 1), got " + a.get("margin"));
+  }
+  if (a.has("seed-rule")) { // seed 003's published configurations
+    o.margin = 0;
+    o.rule = o.elements == VolumeElements::hexahedra ? ZeroRule::inclusive : ZeroRule::strict;
+  }
+  return o;
+}
+
+void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMeshInfo& info,
+                   const VolumeQuality& q, const VolumeMeshOptions& o) {
+  const RegularGrid& g = info.grid;
+  const bool tets = m.C.cols() == 4;
+  const long boundary_nodes = std::count(m.boundary.begin(), m.boundary.end(), char(1));
+  std::cout << "interlin mesh " << r.input << " --volume " << (tets ? "tet" : "hex") << "\n";
+  std::cout << "  grid         " << g.nodes(0) << " x " << g.nodes(1) << " x " << g.nodes(2)
+            << " nodes, cell " << fmt(g.spacing(0)) << ", "
+            << (o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency())))
+            << " threads\n";
+  std::cout << "  elements     " << m.C.rows() << (tets ? " tetrahedra" : " hexahedra") << " ("
+            << info.inner_cells << " inner cells, " << info.layer_elements
+            << " in the boundary layer), " << m.V.rows() << " nodes, " << m.B.rows()
+            << (tets ? " boundary triangles" : " boundary quadrilaterals") << "\n";
+  std::cout << "  quality      dihedral angles " << fmt(q.min_dihedral_deg, 3) << " .. "
+            << fmt(q.max_dihedral_deg, 4) << " deg (" << q.outside_10_170
+            << " elements outside 10 .. 170), scaled Jacobian min " << fmt(q.min_scaled_jacobian, 3)
+            << " mean " << fmt(q.mean_scaled_jacobian, 3);
+  if (tets)
+    std::cout << ", radius ratio min " << fmt(q.min_radius_ratio, 3) << " mean "
+              << fmt(q.mean_radius_ratio, 3);
+  std::cout << ", inverted " << q.inverted << "\n";
+  std::cout << "  boundary     " << boundary_nodes << " nodes on F = 0 (max |F| "
+            << fmt(info.max_boundary_f, 3) << ", " << info.unprojected << " not projected)\n";
+  std::cout << "  geometry     volume " << fmt(q.volume, 7) << "\n";
+}
+
+} // namespace
+
+bool volume_output_ok(const std::string& path) {
+  return is_volume_mesh_path(path) || surface_output(path) || lower_extension(path) == ".png";
+}
+
+std::vector<OptionSpec> volume_options() {
+  return {{"volume", 0, true, false},
+          {"margin", 0, true, false},
+          {"sweeps", 0, true, false},
+          {"seed-rule", 0, false, false}};
+}
+
+void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeRequest& r,
+                 const Progress& progress, std::vector<std::string>& written) {
+  VolumeMeshOptions o = volume_options_of(a, r);
+  o.progress = progress;
+  VolumeMeshInfo info;
+  const VolumeMesh m = volume_mesh(f, o, &info);
+  if (m.C.rows() == 0)
+    throw_input_error(r.input, 0,
+                      "no volume mesh: no grid cell lies inside the body (refine the grid with "
+                      "--resolution or --cell, or check the box)");
+  progress("checking the elements");
+  std::vector<ElementQuality> per;
+  const VolumeQuality q = volume_quality(m.V, m.C, r.threads, &per);
+  print_summary(r, m, info, q, o);
+  if (q.inverted > 0)
+    throw std::runtime_error(std::to_string(q.inverted) +
+                             " inverted elements (features thinner than a few cells: refine the "
+                             "grid with --cell or --resolution)");
+  VolumeMeshFields fields;
+  Eigen::VectorXd sj(m.C.rows()), dmin(m.C.rows());
+  for (long e = 0; e < m.C.rows(); ++e)
+    sj(e) = per[size_t(e)].scaled_jacobian, dmin(e) = per[size_t(e)].min_dihedral_deg;
+  fields.element = {{"scaled_jacobian", sj}, {"min_dihedral_deg", dmin}};
+  Eigen::MatrixXd SV;
+  Eigen::MatrixXi SF;
+  boundary_surface(m, SV, SF);
+  for (const std::string& out : r.outputs) {
+    progress("writing " + out);
+    if (is_volume_mesh_path(out)) {
+      write_volume_mesh(out, m.V, m.C, m.B, fields);
+    } else if (surface_output(out)) {
+      write_mesh(out, SV, SF);
+    } else {
+      PreviewOptions po;
+      po.azimuth_deg = r.azimuth;
+      po.elevation_deg = r.elevation;
+      po.up = Eigen::Vector3d::UnitZ();
+      write_preview_png(out, SV, SF, {}, po);
+    }
+    written.push_back(out);
+  }
+  print_written(written);
+  progress("done");
+}
+
+} // namespace interlin::cli

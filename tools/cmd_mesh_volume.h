@@ -1,0 +1,42 @@
+#pragma once
+// interlin mesh --volume tet|hex: the volume-mesh half of `interlin mesh` (seed 003's solid
+// elements), called by cmd_mesh.cpp once the model and the grid options are read.
+
+#include "cli_common.h"
+
+#include "interlin/interflatation/implicit_function.h"
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace interlin::cli {
+
+// What cmd_mesh.cpp has already parsed and checked.
+struct VolumeRequest {
+  std::string input;                // model file (for the summary and errors)
+  Eigen::AlignedBox3d box;          // region (the model's box unless --box)
+  int resolution = 128;             // --resolution ...
+  double cell = 0;                  // ... or --cell
+  int threads = 0;                  // --threads
+  int smooth = 0;                   // --smooth: functional (12) sweeps on the boundary
+  std::vector<std::string> outputs; // -o files (extensions checked by volume_output_ok)
+  int azimuth = 45, elevation = 25; // --view of the .png preview
+  bool quiet = false;
+};
+
+// Whether `path` is an output `interlin mesh --volume` can write (.vtu .msh .inp for the
+// elements, .stl .obj .ply .off for the boundary surface, .png for its preview).
+bool volume_output_ok(const std::string& path);
+
+// The volume options of `interlin mesh` (--volume, --margin, --sweeps, --seed-rule, --adapt,
+// --adapt-delta, --adapt-var) for the parser.
+std::vector<OptionSpec> volume_options();
+
+// Parses the volume options, meshes, prints the summary, writes the outputs (appending each to
+// `written`). Throws UsageError for bad options, InputError for a model without a body in the
+// box, std::runtime_error for a mesh that fails its checks (inverted elements).
+void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeRequest& r,
+                 const Progress& progress, std::vector<std::string>& written);
+
+} // namespace interlin::cli
