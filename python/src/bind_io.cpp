@@ -1,4 +1,5 @@
-// Python bindings of reconstruction/io: section, guide and points files, mesh files, previews.
+// Python bindings of reconstruction/io: section, guide and points files, mesh and volume mesh
+// files, previews.
 #include "bindings.h"
 
 #include "interlin/reconstruction/io/guide_csv.h"
@@ -6,6 +7,7 @@
 #include "interlin/reconstruction/io/points_csv.h"
 #include "interlin/reconstruction/io/preview.h"
 #include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/io/volume_mesh_io.h"
 
 namespace interlin::python {
 
@@ -97,6 +99,24 @@ void bind_meshes(py::module_& m) {
       py::arg("path"), py::arg("V"), py::arg("F"), py::arg("precision") = "float64", release_gil(),
       R"(Writes a triangle mesh by extension, atomically: V (N, 3), F (M, 3). .ply (binary) and .obj
 carry `precision` coordinates ("float64": exact, or "float32"); .stl and .off are float32.)");
+  m.def(
+      "write_volume_mesh",
+      [](const std::string& path, const MatrixXd& V, const MatrixXi& C, const MatrixXi& B,
+         const std::map<std::string, Eigen::VectorXd>& node_fields,
+         const std::map<std::string, Eigen::VectorXd>& element_fields) {
+        require_shape(V, 3, "V");
+        VolumeMeshFields fields;
+        fields.node.assign(node_fields.begin(), node_fields.end());
+        fields.element.assign(element_fields.begin(), element_fields.end());
+        write_volume_mesh(path, V, C, B, fields);
+      },
+      py::arg("path"), py::arg("V"), py::arg("C"), py::arg("B") = MatrixXi(0, 3),
+      py::arg("node_fields") = std::map<std::string, Eigen::VectorXd>{},
+      py::arg("element_fields") = std::map<std::string, Eigen::VectorXd>{}, release_gil(),
+      R"(Writes a volume mesh by extension, atomically: .vtu (VTK XML, with the named node and
+element fields: dicts of (N,) and (E,) arrays), .msh (Gmsh 4.1), .inp (Abaqus / CalculiX).
+V (N, 3), C (E, 4) tetrahedra or (E, 8) hexahedra (VTK order), B (K, 3 or 4) boundary facets
+(mesh_volume's).)");
 
   const auto options = [](int width, int height, const Eigen::Vector3d& up, double azimuth,
                           double elevation, int supersample) {

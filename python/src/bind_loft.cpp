@@ -7,8 +7,10 @@
 #include "interlin/reconstruction/io/input_error.h"
 #include "interlin/reconstruction/io/mesh_io.h"
 #include "interlin/reconstruction/io/preview.h"
+#include "interlin/reconstruction/io/step.h"
 #include "interlin/reconstruction/io/surface_json.h"
 #include "interlin/reconstruction/loft/closest_point.h"
+#include "interlin/reconstruction/loft/end_caps.h"
 #include "interlin/reconstruction/loft/guided_loft.h"
 #include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/reconstruction/loft/loft.h"
@@ -109,7 +111,8 @@ LengthUnit unit_of(const std::string& u) {
                             u, "units");
 }
 
-// Writes by extension: .igs/.iges, .json, a mesh (.stl .obj .ply .off) or a .png preview.
+// Writes by extension: .igs/.iges, .stp/.step, .json, a mesh (.stl .obj .ply .off) or a .png
+// preview.
 void write_surface(const Surface& S, const std::string& path, const std::string& units,
                    const std::map<std::string, std::string>& meta, const MeshArgs& mesh,
                    const std::vector<MatrixXd>& polylines) {
@@ -119,6 +122,16 @@ void write_surface(const Surface& S, const std::string& path, const std::string&
     o.unit = unit_of(units);
     py::gil_scoped_release release;
     write_iges(path, S.b, o);
+  } else if (e == ".stp" || e == ".step") {
+    StepOptions o;
+    o.unit = unit_of(units);
+    py::gil_scoped_release release;
+    if (mesh.cap) {
+      const std::array<StepCap, 2> caps{end_cap(S.b, false), end_cap(S.b, true)};
+      write_step(path, S.b, &caps, o);
+    } else {
+      write_step(path, S.b, nullptr, o);
+    }
   } else if (e == ".json") {
     std::map<std::string, std::string> m = meta;
     m.emplace("units", units);
@@ -132,8 +145,9 @@ void write_surface(const Surface& S, const std::string& path, const std::string&
     else
       write_mesh(path, V, F, mesh.precision);
   } else {
-    throw py::value_error("'" + path +
-                          "': unknown extension (use .igs .iges .json .stl .obj .ply .off .png)");
+    throw py::value_error(
+        "'" + path +
+        "': unknown extension (use .igs .iges .stp .step .json .stl .obj .ply .off .png)");
   }
 }
 
@@ -272,7 +286,8 @@ along v plus the rows required_v exactly; cap closes both ends (closed_u surface
           py::arg("cap") = false, py::arg("polylines") = std::vector<MatrixXd>{},
           py::arg("precision") = "float64",
           R"(Writes the surface by extension, atomically: .igs/.iges (IGES 5.3 entity 128, `units`
-label), .json (exact, with meta), .stl/.obj/.ply/.off (mesh of nu x nv samples, optional cap;
+label), .stp/.step (AP214: one B-spline face, or with cap one closed solid with ruled end caps),
+.json (exact, with meta), .stl/.obj/.ply/.off (mesh of nu x nv samples, optional cap;
 .ply/.obj coordinates in `precision`, "float64" or "float32"), .png (shaded preview with
 polylines).)")
       .def("__repr__", [](const Surface& S) {

@@ -1,11 +1,13 @@
-// Python bindings of reconstruction/meshing: implicit bodies to closed meshes, mesh checks,
-// smoothing on the surface, loop triangulation.
+// Python bindings of reconstruction/meshing: implicit bodies to closed meshes and to volume
+// meshes, mesh checks, smoothing on the surface, loop triangulation.
 #include "bindings.h"
 
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
+#include "interlin/reconstruction/meshing/volume_mesh.h"
+#include "interlin/reconstruction/meshing/volume_quality.h"
 
 namespace interlin::python {
 
@@ -40,9 +42,91 @@ py::dict report_dict(const MeshReport& r) {
   return d;
 }
 
+py::dict volume_info_dict(const VolumeMeshInfo& i) {
+  py::dict d;
+  d["inside_nodes"] = i.inside_nodes;
+  d["dropped_nodes"] = i.dropped_nodes;
+  d["removed_cells"] = i.removed_cells;
+  d["inner_cells"] = i.inner_cells;
+  d["layer_elements"] = i.layer_elements;
+  d["unprojected"] = i.unprojected;
+  d["max_boundary_f"] = i.max_boundary_f;
+  return d;
+}
+
+py::dict quality_dict(const VolumeQuality& q) {
+  py::dict d;
+  d["elements"] = q.elements;
+  d["inverted"] = q.inverted;
+  d["volume"] = q.volume;
+  d["min_dihedral_deg"] = q.min_dihedral_deg;
+  d["max_dihedral_deg"] = q.max_dihedral_deg;
+  d["min_scaled_jacobian"] = q.min_scaled_jacobian;
+  d["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
+  d["min_radius_ratio"] = q.min_radius_ratio;
+  d["mean_radius_ratio"] = q.mean_radius_ratio;
+  d["outside_10_170"] = q.outside_10_170;
+  return d;
+}
+
+void bind_volume_meshes(py::module_& m) {
+  m.def(
+      "mesh_volume",
+      [](const ImplicitFunction& f, const std::string& elements, int resolution, double cell,
+         const std::optional<MatrixXd>& box, const std::string& rule, double margin,
+         int surface_sweeps, int interior_sweeps, int threads) {
+        VolumeMeshOptions o;
+        o.elements = choice<VolumeElements>(
+            {{"tet", VolumeElements::tetrahedra}, {"hex", VolumeElements::hexahedra}}, elements,
+            "elements");
+        o.rule = choice<ZeroRule>(
+            {{"strict", ZeroRule::strict}, {"inclusive", ZeroRule::inclusive}}, rule, "rule");
+        if (box)
+          o.box = box_from_array(*box);
+        o.resolution = resolution, o.cell = cell, o.margin = margin;
+        o.surface_sweeps = surface_sweeps, o.interior_sweeps = interior_sweeps, o.threads = threads;
+        VolumeMeshInfo info;
+        VolumeMesh v;
+        {
+          py::gil_scoped_release release;
+          v = volume_mesh(f, o, &info);
+        }
+        Eigen::Matrix<bool, Eigen::Dynamic, 1> on_boundary(v.boundary.size());
+        for (size_t i = 0; i < v.boundary.size(); ++i)
+          on_boundary(static_cast<Eigen::Index>(i)) = v.boundary[i] != 0;
+        return py::make_tuple(std::move(v.V), std::move(v.C), std::move(v.B),
+                              std::move(on_boundary), volume_info_dict(info));
+      },
+      py::arg("f"), py::arg("elements") = "tet", py::arg("resolution") = 64, py::arg("cell") = 0.0,
+      py::arg("box") = py::none(), py::arg("rule") = "strict", py::arg("margin") = 0.35,
+      py::arg("surface_sweeps") = 0, py::arg("interior_sweeps") = 8, py::arg("threads") = 0,
+      R"(Finite-element mesh of the solid {F > 0} by seed 003's solid-element method (interlin mesh
+--volume): background cells inside, a boundary layer projected onto F = 0, smoothing ->
+(V (N, 3), C (E, 4) tetrahedra or (E, 8) hexahedra (VTK order) int32, B (K, 3 or 4) boundary
+facets, boundary (N,) bool, info dict). elements "tet" or "hex"; rule "strict" (F > eps) or
+"inclusive" (F >= -eps) for the inside nodes; margin: inside nodes within margin x cell of F = 0
+count as outside (no thin layer elements).)");
+  m.def(
+      "volume_quality",
+      [](const MatrixXd& V, const MatrixXi& C, int threads) {
+        require_shape(V, 3, "V");
+        VolumeQuality q;
+        {
+          py::gil_scoped_release release;
+          q = volume_quality(V, C, threads);
+        }
+        return quality_dict(q);
+      },
+      py::arg("V"), py::arg("C"), py::arg("threads") = 0,
+      R"(Quality of a volume mesh V (N, 3), C (E, 4) or (E, 8) -> dict: elements, inverted, volume,
+min/max_dihedral_deg, min/mean_scaled_jacobian, min/mean_radius_ratio (NaN for hexahedra),
+outside_10_170 (elements with a dihedral angle outside [10, 170] degrees).)");
+}
+
 } // namespace
 
 void bind_meshing(py::module_& m) {
+  bind_volume_meshes(m);
   m.def(
       "mesh_implicit",
       [](const ImplicitFunction& f, int resolution, double cell, const std::optional<MatrixXd>& box,
