@@ -14,6 +14,12 @@ STUDIES = sorted(os.path.basename(p)[:-3] for p in glob.glob(os.path.join(ROOT, 
                  if not os.path.basename(p).startswith("study"))
 
 
+# Studies too slow for a smoke run: cloud_reconstruction drives bench/bench_clouds (issue 11),
+# whose exact distances take 100,000 samples per surface: its --quick run took 4.7 min on the
+# shared 2-core machine. Run it by hand (README "Accuracy studies").
+SLOW = {"cloud_reconstruction"}
+
+
 def run_study(name, out, mpi_ranks=0):
     cmd = [sys.executable, os.path.join(ROOT, "studies", name + ".py"), str(out), "--quick", "-q"]
     env = dict(os.environ)
@@ -30,6 +36,8 @@ def run_study(name, out, mpi_ranks=0):
 
 @pytest.mark.parametrize("name", STUDIES)
 def test_study_writes_csv_png_and_report(tmp_path, name):
+    if name in SLOW:
+        pytest.skip("minutes even with --quick; run by hand")
     run_study(name, tmp_path)
     report = (tmp_path / "report.md").read_text()
     images = re.findall(r"!\[[^]]*\]\(([^)]+\.png)\)", report)

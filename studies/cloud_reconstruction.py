@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""Point cloud reconstruction against screened Poisson: interlin's partition-of-unity implicit
+(fit_cloud_implicit, meshed) and PCL's and Open3D's Poisson on the same clouds and normals.
+
+The measurements are those of the C++ benchmark bench/bench_clouds (each method in a worker
+process of its own, for its peak memory; exact point-to-triangle distances with CGAL): this
+study drives that binary one cloud at a time, so that the clouds spread over MPI ranks, and turns
+its tables into CSV, plots and a report. Metrics: two-sided Chamfer and Hausdorff distance to the
+true surface over the bounding-box diagonal, wall time, peak memory; clouds without a true
+surface (the Stanford bunny) are scored by the hold-out distance of withheld points.
+
+Issue 11's targets, checked per cloud: Chamfer <= 0.5 x the better Poisson's, at no more than its
+time.
+
+Usage: python3 studies/cloud_reconstruction.py [OUT_DIR] [--quick] [-q] [--threads T]
+                                                [--bench build/bench/bench_clouds]
+       mpirun -n 2 python3 studies/cloud_reconstruction.py OUT_DIR --threads 1
+"""
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+from study import ROOT, Study, arguments, plt
+
+CLOUDS = ["blade", "blade-noisy", "blade-hole", "slices", "slices-noisy", "radial", "impeller",
+          "uav", "car", "valve", "naca0011_plate", "valve-noisy", "bunny"]
+# --quick: one small blade scan, coarse settings (the smoke test)
+QUICK = dict(clouds=["blade"], points=3000, resolution=48, depths="6")
+FULL = dict(clouds=CLOUDS, points=100000, resolution=256, depths="8,9")
+COLUMNS = ["Chamfer / diag", "Hausdorff / diag", "zero-set Chamfer", "hold-out mean",
+           "hold-out max", "time [s]", "peak MB", "vertices"]
+CHAMFER_TARGET = 0.5  # issue 11: Chamfer <= 0.5 x the better Poisson's
+
+
+def number(text):
+    text = text.strip()
+    return math.nan if text in ("–", "-", "") else float(text)
+
+
+def parse(stdout):
+    """bench_clouds' output for one cloud -> (name, description, [(method, values, error)],
+    notes). The first method is interlin's (the sectioned-scan loft for sectioned clouds)."""
+    name, description, rows, notes, in_table = None, "", [], [], False
+    for line in stdout.splitlines():
+        if line.startswith("## "):
+            name = line[3:].rsplit(" (", 1)[0]
+        elif line.startswith("| method"):
+            in_table = True
+        elif in_table and line.startswith("| cloud"):
+            break  # the summary table that closes the output
+        elif in_table and line.startswith("|---"):
+            continue
+        elif in_table and line.startswith("| "):
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            mean, mx = cells[4].split("/")
+            values = [number(cells[1]), number(cells[2]), number(cells[3]), number(mean),
+                      number(mx), number(cells[5]), number(cells[6]), number(cells[7])]
+            rows.append((cells[0], values, cells[8] if len(cells) > 8 else ""))
+        elif in_table and line.startswith("sectioned:"):
+            notes.append(line)
+        elif name and not description and line and not line.startswith("|"):
+            description = line
+    if not rows:
+        raise RuntimeError("bench_clouds printed no table:\n" + stdout)
+    return name, description, rows, notes
+
+
+def run_cloud(bench, key, settings, threads):
+    cmd = [bench, "--cases", key, "--points", str(settings["points"]), "--resolution",
+           str(settings["resolution"]), "--depths", settings["depths"], "--threads", str(threads)]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError("%s failed (%d): %s" % (" ".join(cmd), r.returncode, r.stderr))
+    return parse(r.stdout)
+
+
+def score(values):
+    """Chamfer against the truth, or the hold-out mean where there is no truth."""
+    return values[0] if not math.isnan(values[0]) else values[3]
+
+
+def main():
+    default_bench = os.path.join(ROOT, "build", "bench", "bench_clouds")
+    args = arguments("cloud_reconstruction", __doc__.splitlines()[0], lambda p: (
+        p.add_argument("--threads", type=int, default=0,
+                       help="threads per method (0: cores / ranks)"),
+        p.add_argument("--bench", default=os.environ.get("INTERLIN_BENCH_CLOUDS", default_bench),
+                       help="the bench_clouds binary (default %(default)s)")))
+    if not os.access(args.bench, os.X_OK):
+        sys.exit("cloud_reconstruction: %s: not found; build it (README command 2 builds bench/ "
+                 "when PCL's surface module, Open3D and CGAL are installed)" % args.bench)
+    study = Study("cloud_reconstruction", "Point cloud reconstruction against screened Poisson",
+                  args)
+    settings = QUICK if args.quick else FULL
+    threads = args.threads or max(1, (os.cpu_count() or 1) // study.size)
+    results = study.map(lambda key: run_cloud(args.bench, key, settings, threads),
+                        settings["clouds"], "cloud")
+    if not study.writer:
+        return
+    write_report(study.report, settings, threads, results)
+    study.progress("wrote " + study.report.write())
+
+
+def write_report(r, settings, threads, results):
+    r.text("""Clouds of %d points (blade scans: unstructured, noisy, with a missing patch, in
+planar or radial slices; clouds sampled from the seed R-function models; the Stanford bunny),
+interlin at resolution %d, Poisson at depths %s, %d threads per method. Run by
+`bench/bench_clouds` (see docs/benchmarks.md "Point clouds" for the method); times are wall
+times on a shared machine, to be read as same-run ratios.""" % (
+        settings["points"], settings["resolution"], settings["depths"], threads))
+    rows = [[name, method] + values + [error] for name, _, table, _ in results
+            for method, values, error in table]
+    r.table("methods", ["cloud", "method"] + COLUMNS + ["error"], rows,
+            "Every cloud and method", markdown=False)
+    summary = []
+    for name, _, table, _ in results:
+        ours = table[0][1]
+        poisson = [(score(v), m, v) for m, v, _ in table
+                   if "Poisson" in m and not math.isnan(score(v))]
+        best = min(poisson) if poisson else (math.nan, "–", [math.nan] * len(COLUMNS))
+        ratio, time_ratio = score(ours) / best[0], ours[5] / best[2][5]
+        summary.append([name, best[1], best[0], best[2][5], score(ours), ours[5], ratio,
+                        time_ratio, ratio <= CHAMFER_TARGET and time_ratio <= 1])
+    r.text("## interlin against the better Poisson")
+    notes = [n for _, _, _, ns in results for n in ns]
+    if notes:
+        r.text("Sectioned scans (distances in units of the noise sigma):\n\n" +
+               "\n".join("- " + n for n in notes))
+    r.table("summary", ["cloud", "better Poisson", "its Chamfer", "its time [s]",
+                        "interlin Chamfer", "interlin time [s]", "Chamfer ratio", "time ratio",
+                        "target met (ratio <= 0.5, time ratio <= 1)"], summary,
+            "Chamfer (hold-out mean for the bunny) and time, per cloud", digits=3)
+    methods = sorted({m for _, _, t, _ in results for m, _, _ in t})
+    fig, ax = plt.subplots(figsize=(max(6, 1.1 * len(results)), 4.5))
+    width = 0.8 / len(methods)
+    for i, m in enumerate(methods):
+        y = [next((score(v) for mm, v, _ in t if mm == m), math.nan) for _, _, t, _ in results]
+        ax.bar(np.arange(len(results)) + i * width, y, width, label=m)
+    ax.set_xticks(np.arange(len(results)) + 0.4 - width / 2, [n for n, _, _, _ in results],
+                  rotation=30, ha="right", fontsize=8)
+    ax.set_yscale("log")
+    ax.set_ylabel("Chamfer / diagonal (bunny: hold-out mean)")
+    ax.legend(fontsize=7)
+    ax.grid(True, axis="y", which="both", alpha=0.3)
+    fig.tight_layout()
+    r.figure("chamfer", fig, "Chamfer distance to the true surface per cloud and method")
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    for m in methods:
+        pts = [(v[5], score(v)) for _, _, t, _ in results for mm, v, _ in t if mm == m]
+        ax.scatter(*zip(*pts), label=m, s=18)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel("Chamfer / diagonal")
+    ax.legend(fontsize=7)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    r.figure("time_accuracy", fig, "Accuracy against time, every cloud and method")
+
+
+if __name__ == "__main__":
+    main()
