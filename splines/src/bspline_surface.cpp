@@ -113,16 +113,63 @@ Vector3d evaluate(const PiecewiseSurface& s, double u, double v, int du, int dv)
     return Vector3d::Zero();
   const Index a = locate(s.breaks_u, s.closed_u, u), b = locate(s.breaks_v, false, v);
   const double hu = u - s.breaks_u(a), hv = v - s.breaks_v(b);
+  const Index sv = s.breaks_v.size() - 1, stride = s.coeffs.rows();
+  // Horner in v, then in u, on the patch's coefficients (plain scalars: Eigen temporaries of
+  // 3-vectors in this inner loop cost several times the arithmetic).
+  const double* C = s.coeffs.data() + (a * sv + b) * (pu + 1) * (pv + 1);
+  double out[3] = {0, 0, 0};
+  for (int i = pu; i >= du; --i) {
+    double row[3] = {0, 0, 0}; // the coefficient of (u - u_a)^i
+    for (int j = pv; j >= dv; --j) {
+      const double f = falling(j, dv);
+      const double* c = C + i * (pv + 1) + j;
+      for (int k = 0; k < 3; ++k)
+        row[k] = row[k] * hv + f * c[k * stride];
+    }
+    const double f = falling(i, du);
+    for (int k = 0; k < 3; ++k)
+      out[k] = out[k] * hu + f * row[k];
+  }
+  return {out[0], out[1], out[2]};
+}
+
+SurfaceDerivatives evaluate_derivatives(const PiecewiseSurface& s, double u, double v) {
+  const int pu = s.degree_u, pv = s.degree_v;
+  const Index a = locate(s.breaks_u, s.closed_u, u), b = locate(s.breaks_v, false, v);
+  // Monomials (x - x_patch)^i and their first and second derivatives, for u and for v.
+  const auto powers = [](int p, double h) {
+    Eigen::Matrix3Xd m = Eigen::Matrix3Xd::Zero(3, p + 1);
+    double hi = 1; // h^i
+    for (int i = 0; i <= p; ++i, hi *= h) {
+      m(0, i) = hi;
+      if (i + 1 <= p)
+        m(1, i + 1) = (i + 1) * hi;
+      if (i + 2 <= p)
+        m(2, i + 2) = (i + 2) * (i + 1) * hi;
+    }
+    return m;
+  };
+  const Eigen::Matrix3Xd U = powers(pu, u - s.breaks_u(a)), V = powers(pv, v - s.breaks_v(b));
   const Index sv = s.breaks_v.size() - 1;
   const auto C = s.coeffs.middleRows((a * sv + b) * (pu + 1) * (pv + 1), (pu + 1) * (pv + 1));
-  Vector3d out = Vector3d::Zero();
-  for (int i = pu; i >= du; --i) {
-    Vector3d row = Vector3d::Zero(); // Horner in v for the coefficient of (u - u_a)^i
-    for (int j = pv; j >= dv; --j)
-      row = row * hv + falling(j, dv) * C.row(i * (pv + 1) + j).transpose();
-    out = out * hu + falling(i, du) * row;
+  SurfaceDerivatives d{Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero(),
+                       Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero()};
+  for (int i = 0; i <= pu; ++i) {
+    Vector3d r0 = Vector3d::Zero(), r1 = Vector3d::Zero(), r2 = Vector3d::Zero(); // v-sums
+    for (int j = 0; j <= pv; ++j) {
+      const Vector3d c = C.row(i * (pv + 1) + j).transpose();
+      r0 += V(0, j) * c;
+      r1 += V(1, j) * c;
+      r2 += V(2, j) * c;
+    }
+    d.S += U(0, i) * r0;
+    d.Su += U(1, i) * r0;
+    d.Suu += U(2, i) * r0;
+    d.Sv += U(0, i) * r1;
+    d.Suv += U(1, i) * r1;
+    d.Svv += U(0, i) * r2;
   }
-  return out;
+  return d;
 }
 
 MatrixXd evaluate_grid(const PiecewiseSurface& s, const VectorXd& u, const VectorXd& v) {

@@ -25,8 +25,8 @@ struct Foot {
 
 // Newton's method for min_{u,v} |S(u,v) - p|^2 / 2 with backtracking; v is kept in its domain
 // (projected), u wraps for closed surfaces and is kept in its domain otherwise.
-Foot newton_foot(const PiecewiseSurface& S, const Eigen::Vector4d& dom, const Vector3d& p, double u,
-                 double v) {
+Foot newton_foot(const ParametricSurface& S, const Vector3d& p, double u, double v) {
+  const Eigen::Vector4d& dom = S.domain;
   const auto clampu = [&](double x) {
     if (S.closed_u)
       return dom(0) + (x - dom(0)) -
@@ -34,24 +34,22 @@ Foot newton_foot(const PiecewiseSurface& S, const Eigen::Vector4d& dom, const Ve
     return std::clamp(x, dom(0), dom(1));
   };
   const auto clampv = [&](double x) { return std::clamp(x, dom(2), dom(3)); };
-  Vector3d x = evaluate(S, u, v);
+  Vector3d x = S.point(u, v);
   double f = 0.5 * (x - p).squaredNorm();
   for (int it = 0; it < 50; ++it) {
+    const SurfaceDerivatives d = S.derivatives(u, v);
     const Vector3d r = x - p;
-    const Vector3d Su = evaluate(S, u, v, 1, 0), Sv = evaluate(S, u, v, 0, 1);
-    const Vector3d Suu = evaluate(S, u, v, 2, 0), Suv = evaluate(S, u, v, 1, 1),
-                   Svv = evaluate(S, u, v, 0, 2);
-    const Vector2d g(Su.dot(r), Sv.dot(r));
+    const Vector2d g(d.Su.dot(r), d.Sv.dot(r));
     Eigen::Matrix2d H;
-    H << Su.dot(Su) + Suu.dot(r), Su.dot(Sv) + Suv.dot(r), Su.dot(Sv) + Suv.dot(r),
-        Sv.dot(Sv) + Svv.dot(r);
+    H << d.Su.dot(d.Su) + d.Suu.dot(r), d.Su.dot(d.Sv) + d.Suv.dot(r),
+        d.Su.dot(d.Sv) + d.Suv.dot(r), d.Sv.dot(d.Sv) + d.Svv.dot(r);
     Eigen::LDLT<Eigen::Matrix2d> ldlt(H);
     Vector2d step;
     if (ldlt.info() == Eigen::Success && ldlt.isPositive() && H.determinant() > 0)
       step = -ldlt.solve(g);
     else { // Gauss–Newton: the first-order part of H is positive semi-definite
       Eigen::Matrix2d J;
-      J << Su.dot(Su), Su.dot(Sv), Su.dot(Sv), Sv.dot(Sv);
+      J << d.Su.dot(d.Su), d.Su.dot(d.Sv), d.Su.dot(d.Sv), d.Sv.dot(d.Sv);
       step = -J.ldlt().solve(g);
     }
     if (!step.allFinite())
@@ -60,7 +58,7 @@ Foot newton_foot(const PiecewiseSurface& S, const Eigen::Vector4d& dom, const Ve
     bool moved = false;
     for (int ls = 0; ls < 30; ++ls, t *= 0.5) {
       const double un = clampu(u + t * step(0)), vn = clampv(v + t * step(1));
-      const Vector3d xn = evaluate(S, un, vn);
+      const Vector3d xn = S.point(un, vn);
       const double fn = 0.5 * (xn - p).squaredNorm();
       // Near the minimum f changes below its own round-off: accept such steps, stop once the
       // step itself is at round-off level.
@@ -77,45 +75,84 @@ Foot newton_foot(const PiecewiseSurface& S, const Eigen::Vector4d& dom, const Ve
   return {u, v, std::sqrt(2 * f), x};
 }
 
+SurfaceProjection sized(Index n) {
+  SurfaceProjection out;
+  out.u.resize(n);
+  out.v.resize(n);
+  out.distance.resize(n);
+  out.foot.resize(n, 3);
+  return out;
+}
+
+void store(SurfaceProjection& out, Index i, const Foot& f) {
+  out.u(i) = f.u;
+  out.v(i) = f.v;
+  out.distance(i) = f.dist;
+  out.foot.row(i) = f.x.transpose();
+}
+
 } // namespace
 
-SurfaceProjection project_to_surface(const PiecewiseSurface& S, const MatrixXd& P, int su, int sv) {
+ParametricSurface parametric(const PiecewiseSurface& S) {
+  return {domain(S), S.closed_u, [&S](double u, double v) { return evaluate(S, u, v); },
+          [&S](double u, double v) { return evaluate_derivatives(S, u, v); }};
+}
+
+SurfaceProjection project_to_surface(const PiecewiseSurface& S, const MatrixXd& P, int su, int sv,
+                                     int starts) {
+  return project_to_surface(parametric(S), P, su, sv, starts);
+}
+
+SurfaceProjection project_to_surface(const ParametricSurface& S, const MatrixXd& P, int su, int sv,
+                                     int starts) {
   if (P.cols() != 3)
     throw std::invalid_argument("project_to_surface: points must be #P by 3");
   if (su < 2 || sv < 2)
     throw std::invalid_argument("project_to_surface: need at least a 2 x 2 start grid");
-  const Eigen::Vector4d dom = domain(S);
+  if (starts < 1 || starts > su * sv)
+    throw std::invalid_argument("project_to_surface: starts must be in [1, grid size]");
+  const Eigen::Vector4d& dom = S.domain;
   const VectorXd gu = VectorXd::LinSpaced(su, dom(0), dom(1));
   const VectorXd gv = VectorXd::LinSpaced(sv, dom(2), dom(3));
-  // Row-major copy for FLANN: grid point i + su * j.
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> G = evaluate_grid(S, gu, gv);
+  // Row-major for FLANN: grid point i + su * j.
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> G(gu.size() * gv.size(), 3);
+  for (Index j = 0; j < gv.size(); ++j)
+    for (Index i = 0; i < gu.size(); ++i)
+      G.row(i + gu.size() * j) = S.point(gu(i), gv(j)).transpose();
   flann::Matrix<double> data(G.data(), static_cast<size_t>(G.rows()), 3);
   flann::Index<flann::L2<double>> index(data, flann::KDTreeSingleIndexParams(12));
   index.buildIndex();
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> Q = P;
   flann::Matrix<double> query(Q.data(), static_cast<size_t>(Q.rows()), 3);
-  const int k = 4; // a few starts guard against the wrong sheet of a thin body (blade sides)
   std::vector<std::vector<size_t>> nn;
   std::vector<std::vector<double>> d2;
-  index.knnSearch(query, nn, d2, k, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
-  SurfaceProjection out;
-  out.u.resize(P.rows());
-  out.v.resize(P.rows());
-  out.distance.resize(P.rows());
-  out.foot.resize(P.rows(), 3);
+  index.knnSearch(query, nn, d2, starts, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
+  SurfaceProjection out = sized(P.rows());
   for (Index i = 0; i < P.rows(); ++i) {
     Foot best{0, 0, INFINITY, Vector3d::Zero()};
     for (size_t c : nn[static_cast<size_t>(i)]) {
       const Index gi = static_cast<Index>(c) % su, gj = static_cast<Index>(c) / su;
-      const Foot f = newton_foot(S, dom, P.row(i).transpose(), gu(gi), gv(gj));
+      const Foot f = newton_foot(S, P.row(i).transpose(), gu(gi), gv(gj));
       if (f.dist < best.dist)
         best = f;
     }
-    out.u(i) = best.u;
-    out.v(i) = best.v;
-    out.distance(i) = best.dist;
-    out.foot.row(i) = best.x.transpose();
+    store(out, i, best);
   }
+  return out;
+}
+
+SurfaceProjection project_from(const PiecewiseSurface& S, const MatrixXd& P, const VectorXd& u0,
+                               const VectorXd& v0) {
+  return project_from(parametric(S), P, u0, v0);
+}
+
+SurfaceProjection project_from(const ParametricSurface& S, const MatrixXd& P, const VectorXd& u0,
+                               const VectorXd& v0) {
+  if (P.cols() != 3 || u0.size() != P.rows() || v0.size() != P.rows())
+    throw std::invalid_argument("project_from: points #P by 3 and #P start parameters expected");
+  SurfaceProjection out = sized(P.rows());
+  for (Index i = 0; i < P.rows(); ++i)
+    store(out, i, newton_foot(S, P.row(i).transpose(), u0(i), v0(i)));
   return out;
 }
 

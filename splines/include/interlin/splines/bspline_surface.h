@@ -36,6 +36,13 @@ PiecewiseSurface to_piecewise(const BSplineSurface& s);
 // Partial derivative d^(du+dv) S / du^du dv^dv at (u, v); (0,0) is the point.
 Eigen::Vector3d evaluate(const PiecewiseSurface& s, double u, double v, int du = 0, int dv = 0);
 
+// The point and every partial derivative of order 1 and 2 at (u, v), from one patch lookup and
+// one pass over its coefficients (the six evaluate() calls of a Newton step in one).
+struct SurfaceDerivatives {
+  Eigen::Vector3d S, Su, Sv, Suu, Suv, Svv;
+};
+SurfaceDerivatives evaluate_derivatives(const PiecewiseSurface& s, double u, double v);
+
 // S at every pair of the grid u x v. Output: (#u * #v) by 3, row i + #u * j.
 Eigen::MatrixXd evaluate_grid(const PiecewiseSurface& s, const Eigen::VectorXd& u,
                               const Eigen::VectorXd& v);
