@@ -17,6 +17,29 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
+void check_loft_inputs(const std::vector<Section>& sections, const LoftOptions& o) {
+  if (sections.size() < 2)
+    throw std::invalid_argument("a loft needs at least 2 sections, got " +
+                                std::to_string(sections.size()));
+  if (o.degree < 1 || (o.span_degree < 1 && o.span_degree != kAutoSpanDegree))
+    throw std::invalid_argument("degrees must be >= 1");
+  const Index need = std::max(4, o.degree + 1);
+  for (const Section& s : sections)
+    if (s.points.rows() < need)
+      throw std::invalid_argument("section " + s.id + " has " + std::to_string(s.points.rows()) +
+                                  " points; degree " + std::to_string(o.degree) +
+                                  " needs at least " + std::to_string(need));
+}
+
+std::vector<std::vector<Index>> edge_landmarks(const std::vector<PreparedSection>& sections,
+                                               StartAlign align) {
+  std::vector<std::vector<Index>> landmarks(sections.size());
+  if (align != StartAlign::first)
+    for (size_t k = 0; k < sections.size(); ++k)
+      landmarks[k] = {align == StartAlign::leading_edge ? sections[k].te : sections[k].le};
+  return landmarks;
+}
+
 namespace {
 
 // Section parameters: cumulative chord^exponent from the start, normalised; with landmark rows
@@ -145,10 +168,14 @@ SectionCurves section_curves(const std::vector<PreparedSection>& sections,
     r.curves = make_compatible(r.curves);
   }
 
-  // Span parameters from the mean distance between neighbouring section curves, measured at 256
-  // common parameters (all curves share one basis now).
+  return r;
+}
+
+VectorXd neighbour_distances(const std::vector<BSplineCurve>& curves,
+                             const std::vector<PreparedSection>& sections) {
+  // Measured at 256 common parameters: all curves share one basis.
   const VectorXd probe = VectorXd::LinSpaced(257, 0, 1).head(256);
-  const SplineBasis basis = explicit_basis(r.curves[0].knots, r.curves[0].degree);
+  const SplineBasis basis = explicit_basis(curves[0].knots, curves[0].degree);
   std::vector<Index> rows, cols;
   std::vector<double> vals;
   collocation_entries(basis, probe, 0, 0, rows, cols, vals);
@@ -158,21 +185,18 @@ SectionCurves section_curves(const std::vector<PreparedSection>& sections,
       out.row(rows[e]) += vals[e] * ctrl.row(cols[e]);
     return out;
   };
-  MatrixXd prev = probe_points(r.curves[0].ctrl);
-  r.section_v.resize(K);
-  r.section_v(0) = 0;
+  const Index K = static_cast<Index>(curves.size());
+  VectorXd d(K - 1);
+  MatrixXd prev = probe_points(curves[0].ctrl);
   for (Index k = 1; k < K; ++k) {
-    const MatrixXd cur = probe_points(r.curves[static_cast<size_t>(k)].ctrl);
-    const double d = (cur - prev).rowwise().norm().mean();
-    if (!(d > 0))
-      throw std::invalid_argument("sections " + sections[k - 1].id + " and " + sections[k].id +
-                                  " coincide");
-    r.section_v(k) = r.section_v(k - 1) + std::pow(d, o.span_exponent);
+    const MatrixXd cur = probe_points(curves[static_cast<size_t>(k)].ctrl);
+    d(k - 1) = (cur - prev).rowwise().norm().mean();
+    if (!(d(k - 1) > 0))
+      throw std::invalid_argument("sections " + sections[static_cast<size_t>(k - 1)].id + " and " +
+                                  sections[static_cast<size_t>(k)].id + " coincide");
     prev = cur;
   }
-  r.section_v /= r.section_v(K - 1);
-  r.section_v(K - 1) = 1.0;
-  return r;
+  return d;
 }
 
 void section_deviation(LoftResult& r, Eigen::Vector3d& lo, Eigen::Vector3d& hi) {

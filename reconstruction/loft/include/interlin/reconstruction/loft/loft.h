@@ -3,6 +3,7 @@
 // section curve exactly (interlineation on the lines v = v_k, seed 001 §2.5).
 
 #include "interlin/reconstruction/loft/section_prep.h"
+#include "interlin/reconstruction/loft/span_model.h"
 #include "interlin/splines/bspline_surface.h"
 
 #include <Eigen/Core>
@@ -20,15 +21,18 @@ namespace interlin {
 //   automatic   index when the counts (and the opposite-edge rows) agree, else arc_length.
 enum class Correspondence { automatic, index, arc_length };
 
-// How the section parameters v_k are spaced: exponent of the mean distance between neighbouring
-// section curves (1 chord length, 0.5 centripetal, 0 uniform).
+// Along the span: the spacing of the section parameters v_k (span_parameters.h) and the degree
+// of the blending, each fixed or chosen by leave-one-out cross-validation (span_model.h; the
+// default: both chosen).
 struct LoftOptions {
-  int degree = 3;      // around the sections (u)
-  int span_degree = 3; // along the span (v), reduced to #sections - 1 when needed
+  int degree = 3; // around the sections (u)
+  // Along the span (v): kAutoSpanDegree (chosen among 3, 5 and #sections - 1), or a fixed
+  // degree; either way reduced to #sections - 1 when needed.
+  int span_degree = kAutoSpanDegree;
+  SpanParameters span = SpanParameters::automatic;
   StartAlign align = StartAlign::first;
   Correspondence match = Correspondence::automatic;
   double section_exponent = 1.0; // section parameters: 1 chord length, 0.5 centripetal
-  double span_exponent = 0.5;    // span parameters: centripetal (best in the Rotor 37 hold-out)
 };
 
 // Result of loft_sections.
@@ -40,6 +44,7 @@ struct LoftOptions {
 //   deviation       per section, |S(u_i, v_k) - P_i| of each prepared point
 //   max_deviation, bbox_diagonal   summary; max_deviation <= 1e-9 * bbox_diagonal is guaranteed
 //   notes           what preparation changed (reversed sections, alignment)
+//   span            the spanwise model used (parameters, degree, leave-one-out error)
 struct LoftResult {
   BSplineSurface surface;
   Eigen::VectorXd section_v;
@@ -49,10 +54,12 @@ struct LoftResult {
   std::vector<Eigen::VectorXd> deviation;
   double max_deviation = 0, bbox_diagonal = 0;
   std::vector<std::string> notes;
+  SpanModel span;
 };
 
 // Lofts K >= 2 closed sections (each >= degree + 1 points). Throws std::invalid_argument for bad
-// options or too few points, InputError-free: section files are validated by read_sections.
+// options (span = station for a stack without stations), too few points or coinciding sections,
+// InputError-free: section files are validated by read_sections.
 // Throws std::runtime_error if the exactness guarantee were violated (never silently).
 LoftResult loft_sections(const std::vector<Section>& sections, const LoftOptions& options = {});
 
