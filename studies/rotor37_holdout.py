@@ -27,11 +27,11 @@ SECTIONS = os.path.join(DATA, "rotor37", "sections.csv")
 LE_ROW, TE_ROW = 0, 99  # the NASA table's J = 1 and J = 100 (data/rotor37/README.md)
 
 # Every-second variants: (label, loft options, guides among "LE", "TE").
-VARIANTS = [("default: centripetal, span degree 3, index", {}, ())]
+VARIANTS = [("default: span model by leave-one-out, index", {}, ())]
 VARIANTS += [("%s, span degree %d, %s" % (sp, q, m),
-              {"span_param": sp, "span_degree": q, "match": m}, ())
-             for sp in ("centripetal", "chord", "uniform") for q in (3, 5)
-             for m in ("index", "arclength") if (sp, q, m) != ("centripetal", 3, "index")]
+              {"span": sp, "span_degree": q, "match": m}, ())
+             for sp in ("station", "centripetal", "chord", "uniform") for q in (3, 5)
+             for m in ("index", "arclength")]
 VARIANTS += [("sections started at the detected LE (--align le)", {"align": "le"}, ()),
              ("linear along the span (span degree 1)", {"span_degree": 1}, ())]
 VARIANTS += [("+ %s guide%s, span degree %d" % (" and ".join(g), "s" if len(g) > 1 else "", q),

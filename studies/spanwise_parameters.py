@@ -74,8 +74,8 @@ def run_case(case, variants):
     sections = sections_at(law, r)
     truth = np.concatenate(sections_at(law, truth_r))
     out = []
-    for span_param, span_degree in variants:
-        L = interlin.loft(sections, span_param=span_param, span_degree=span_degree)
+    for span, span_degree in variants:
+        L = interlin.loft(sections, span=span, span_degree=span_degree)
         d = L.surface.distance(truth)
         out.append((float(d.max()), float(np.sqrt(np.mean(d ** 2)))))
     return out
@@ -86,10 +86,11 @@ def main():
     study = Study("spanwise_parameters", "Spanwise parameters on synthetic blades", args)
     if args.quick:
         laws, spacings, counts = ["mild"], ["clustered"], [5, 9]
-        variants = [("centripetal", 3), ("chord", 3)]
+        variants = [("auto", "auto"), ("centripetal", 3), ("chord", 3)]
     else:
         laws, spacings, counts = list(LAWS), ["uniform", "clustered", "growing", "jittered"], [5, 9, 17]
-        variants = [(p, q) for q in (3, 5) for p in ("uniform", "centripetal", "chord")]
+        variants = [("auto", "auto")] + [(p, q) for q in (3, 5)
+                                         for p in ("uniform", "centripetal", "chord")]
     cases = [(law, sp, K) for law in laws for sp in spacings for K in counts]
     results = study.map(lambda c: run_case(c, variants), cases, "blade")
     if not study.writer:
@@ -100,7 +101,7 @@ def main():
 data/profiles/turbine_blade_span.json) and `twisted` (stagger +16 deg plus a 3 deg bulge, chord
 -23 %%, outlet angle +5 deg). Error: distance of the true profiles at 3 radii inside every gap to
 the loft of the K stations (%d x 3 x 152 points per blade).""" % (max(counts) - 1))
-    name = ["%s, span degree %d" % v for v in variants]
+    name = ["%s, span degree %s" % v for v in variants]
     rows = [[law, sp, K, n, mx, rms] for (law, sp, K), res in zip(cases, results)
             for n, (mx, rms) in zip(name, res)]
     r.table("errors", ["law", "spacing", "K", "parameterisation", "max", "rms"], rows,

@@ -353,12 +353,24 @@ std::optional<GuideSet> guides_arg(const py::object& o) {
   return GuideSet{"<guides>", items_of<Guide>(o, "guide points", 2)};
 }
 
-// An exponent given by name (as the CLI's --param / --span-param) or as a number.
+// An exponent given by name (as the CLI's --param) or as a number.
 double exponent_arg(const py::object& o, const char* what) {
   if (py::isinstance<py::str>(o))
-    return choice<double>({{"chord", 1.0}, {"centripetal", 0.5}, {"uniform", 0.0}},
-                          o.cast<std::string>(), what);
+    return choice<double>({{"chord", 1.0}, {"centripetal", 0.5}}, o.cast<std::string>(), what);
   return o.cast<double>();
+}
+
+// The span degree: "auto" (chosen by leave-one-out) or a degree >= 1 (as --span-degree).
+int span_degree_arg(const py::object& o) {
+  if (py::isinstance<py::str>(o)) {
+    if (o.cast<std::string>() != "auto")
+      throw py::value_error("span_degree: expected \"auto\" or a degree >= 1");
+    return kAutoSpanDegree;
+  }
+  const int q = o.cast<int>();
+  if (q < 1)
+    throw py::value_error("span_degree: expected \"auto\" or a degree >= 1");
+  return q;
 }
 
 struct LoftArgs {
@@ -366,13 +378,13 @@ struct LoftArgs {
   std::optional<GuideSet> guides;
 };
 
-LoftArgs loft_args(int degree, int span_degree, const std::string& align, const std::string& match,
-                   const py::object& param, const py::object& span_param, const py::object& guides,
-                   double guide_tolerance) {
+LoftArgs loft_args(int degree, const py::object& span_degree, const std::string& align,
+                   const std::string& match, const py::object& param, const std::string& span,
+                   const py::object& guides, double guide_tolerance) {
   LoftArgs a;
   LoftOptions& o = a.options.loft;
   o.degree = degree;
-  o.span_degree = span_degree;
+  o.span_degree = span_degree_arg(span_degree);
   o.align = choice<StartAlign>({{"first", StartAlign::first},
                                 {"le", StartAlign::leading_edge},
                                 {"te", StartAlign::trailing_edge}},
@@ -382,7 +394,12 @@ LoftArgs loft_args(int degree, int span_degree, const std::string& align, const 
                                     {"arclength", Correspondence::arc_length}},
                                    match, "match");
   o.section_exponent = exponent_arg(param, "param");
-  o.span_exponent = exponent_arg(span_param, "span_param");
+  o.span = choice<SpanParameters>({{"auto", SpanParameters::automatic},
+                                   {"station", SpanParameters::station},
+                                   {"chord", SpanParameters::chord},
+                                   {"centripetal", SpanParameters::centripetal},
+                                   {"uniform", SpanParameters::uniform}},
+                                  span, "span");
   a.options.guide_tolerance = guide_tolerance;
   a.guides = guides_arg(guides);
   return a;
@@ -428,12 +445,14 @@ Loft loft_of(const std::vector<Section>& sections, const LoftArgs& a) {
 const char* const kLoftOptionsDoc = R"(
 Options (as `interlin loft`):
   degree            spline degree around the sections (default 3)
-  span_degree       degree along the span (default 3, reduced to #sections - 1)
+  span              spacing of the sections along the span: "auto" (default: chosen by
+                    leave-one-out cross-validation), "station" (the sections' own positions),
+                    "chord", "centripetal" or "uniform" (as --span)
+  span_degree       degree along the span: "auto" (default: 3, 5 or #sections - 1 by
+                    leave-one-out) or a degree, reduced to #sections - 1
   align             section start: "first" (keep), "le" / "te" (detected edge)
   match             correspondence: "auto", "index" (equal counts), "arclength"
   param             parameters along the sections: "chord", "centripetal" or an exponent
-  span_param        spacing of the section parameters: "centripetal" (default), "chord",
-                    "uniform" or an exponent
   guides            guide lines (path, GuideSet, or list of Guide / (P, 3) arrays): the surface is
                     then a Gordon surface through every section and every guide
   guide_tolerance   a guide must pass within this x bbox diagonal of every section (1e-3)
@@ -465,9 +484,29 @@ rows of the crossings, input_deviation (per input point), deviation (per row), c
       .def_readonly("deviation", &GuideFit::deviation)
       .def_readonly("curve_deviation", &GuideFit::curve_deviation)
       .def_readonly("reversed", &GuideFit::reversed);
+  py::class_<SpanCandidate>(m, "SpanCandidate", R"(One spanwise model: parameters ("station",
+"chord", "centripetal", "uniform"), degree, and its leave-one-out error loo_max, loo_rms (each
+interior section withheld in turn; NaN without interior sections).)")
+      .def_property_readonly("parameters",
+                             [](const SpanCandidate& c) { return to_string(c.parameters); })
+      .def_readonly("degree", &SpanCandidate::degree)
+      .def_readonly("loo_max", &SpanCandidate::loo_max)
+      .def_readonly("loo_rms", &SpanCandidate::loo_rms);
+  py::class_<SpanModel>(m, "SpanModel", R"(The spanwise model a loft used: used (SpanCandidate),
+chosen (by leave-one-out among candidates, else fixed by the options), candidates, stacking
+("parallel planes", "coaxial surfaces of revolution about z" or "none"), stations (K,) (empty
+for none), folds (sections withheld in turn).)")
+      .def_readonly("used", &SpanModel::used)
+      .def_readonly("chosen", &SpanModel::chosen)
+      .def_readonly("candidates", &SpanModel::candidates)
+      .def_property_readonly("stacking",
+                             [](const SpanModel& m) { return to_string(m.stations.stacking); })
+      .def_property_readonly("stations", [](const SpanModel& m) { return m.stations.station; })
+      .def_readonly("folds", &SpanModel::folds);
   py::class_<Loft>(m, "Loft", R"(Result of loft(): surface (Surface; u around, v along the span),
 section_v (K,), point_u (list of (P_k,)), sections (list of PreparedSection), correspondence,
-deviation (list of (P_k,) |S(u_i, v_k) - P_i|), max_deviation, bbox_diagonal, notes, warnings
+deviation (list of (P_k,) |S(u_i, v_k) - P_i|), max_deviation, bbox_diagonal, notes, span
+(SpanModel: the spanwise model and its leave-one-out error), warnings
 (from the file), guides (list of GuideFit), max_guide_deviation, max_input_deviation.)")
       .def_property_readonly("surface", [](const Loft& L) { return L.surface; })
       .def_property_readonly("section_v", [](const Loft& L) { return L.result.section_v; })
@@ -482,6 +521,7 @@ deviation (list of (P_k,) |S(u_i, v_k) - P_i|), max_deviation, bbox_diagonal, no
       .def_property_readonly("max_deviation", [](const Loft& L) { return L.result.max_deviation; })
       .def_property_readonly("bbox_diagonal", [](const Loft& L) { return L.result.bbox_diagonal; })
       .def_property_readonly("notes", [](const Loft& L) { return L.result.notes; })
+      .def_property_readonly("span", [](const Loft& L) { return L.result.span; })
       .def_readonly("warnings", &Loft::warnings)
       .def_readonly("guides", &Loft::guides)
       .def_readonly("max_guide_deviation", &Loft::max_guide_deviation)
@@ -498,21 +538,20 @@ struct Holdout {
 void bind_loft_functions(py::module_& m) {
   m.def(
       "loft",
-      [](const py::object& sections, int degree, int span_degree, const std::string& align,
-         const std::string& match, const py::object& param, const py::object& span_param,
-         const py::object& guides, double guide_tolerance) {
+      [](const py::object& sections, int degree, const py::object& span_degree,
+         const std::string& align, const std::string& match, const py::object& param,
+         const std::string& span, const py::object& guides, double guide_tolerance) {
         const SectionsArg s = sections_arg(sections);
-        const LoftArgs a = loft_args(degree, span_degree, align, match, param, span_param, guides,
-                                     guide_tolerance);
+        const LoftArgs a =
+            loft_args(degree, span_degree, align, match, param, span, guides, guide_tolerance);
         py::gil_scoped_release release;
         Loft L = as_input_error(s.path, [&] { return loft_of(s.sections, a); });
         L.warnings = s.warnings;
         return L;
       },
-      py::arg("sections"), py::arg("degree") = 3, py::arg("span_degree") = 3,
+      py::arg("sections"), py::arg("degree") = 3, py::arg("span_degree") = "auto",
       py::arg("align") = "first", py::arg("match") = "auto", py::arg("param") = "chord",
-      py::arg("span_param") = "centripetal", py::arg("guides") = py::none(),
-      py::arg("guide_tolerance") = 1e-3,
+      py::arg("span") = "auto", py::arg("guides") = py::none(), py::arg("guide_tolerance") = 1e-3,
       (std::string("Lofts closed sections into one B-spline surface through every section "
                    "exactly (seed 001 §2.5) -> Loft.\n") +
        kLoftOptionsDoc)
@@ -531,14 +570,14 @@ max, rms (over all withheld points), loft (the Loft of the training sections).)"
   m.def(
       "holdout",
       [](const py::object& sections, std::optional<std::vector<size_t>> withhold,
-         std::optional<int> every, int degree, int span_degree, const std::string& align,
-         const std::string& match, const py::object& param, const py::object& span_param,
-         const py::object& guides, double guide_tolerance) {
+         std::optional<int> every, int degree, const py::object& span_degree,
+         const std::string& align, const std::string& match, const py::object& param,
+         const std::string& span, const py::object& guides, double guide_tolerance) {
         if (withhold.has_value() == every.has_value())
           throw py::value_error("give exactly one of withhold=[indices] and every=K");
         const SectionsArg s = sections_arg(sections);
-        const LoftArgs a = loft_args(degree, span_degree, align, match, param, span_param, guides,
-                                     guide_tolerance);
+        const LoftArgs a =
+            loft_args(degree, span_degree, align, match, param, span, guides, guide_tolerance);
         py::gil_scoped_release release;
         Holdout h;
         const std::vector<size_t> out =
@@ -554,8 +593,8 @@ max, rms (over all withheld points), loft (the Loft of the training sections).)"
         return h;
       },
       py::arg("sections"), py::arg("withhold") = py::none(), py::arg("every") = py::none(),
-      py::arg("degree") = 3, py::arg("span_degree") = 3, py::arg("align") = "first",
-      py::arg("match") = "auto", py::arg("param") = "chord", py::arg("span_param") = "centripetal",
+      py::arg("degree") = 3, py::arg("span_degree") = "auto", py::arg("align") = "first",
+      py::arg("match") = "auto", py::arg("param") = "chord", py::arg("span") = "auto",
       py::arg("guides") = py::none(), py::arg("guide_tolerance") = 1e-3,
       (std::string(R"(Hold-out study: lofts the sections not withheld and measures the exact
 distance of every point of the withheld sections to that surface -> Holdout.

@@ -48,7 +48,7 @@ def test_distances_of_points_off_the_surface(rotor):
 def test_synthetic_families_are_exact(n, k):
     rng = np.random.default_rng(n + k)
     zs = np.sort(rng.uniform(0, 3, k))
-    L = interlin.loft(body_sections(zs, n, rng), span_param="chord", match="arclength")
+    L = interlin.loft(body_sections(zs, n, rng), span="chord", match="arclength")
     assert L.max_deviation <= 1e-9 * L.bbox_diagonal
 
 
