@@ -82,22 +82,6 @@ Face first_face(const TopoDS_Shape& shape) {
   return f;
 }
 
-// Distances of the rows of P to the surface by GeomAPI_ProjectPointOnSurf (all extrema over the
-// whole parameter domain, the lowest kept).
-Eigen::VectorXd occt_distances(const Handle(Geom_Surface) & S, const Eigen::MatrixXd& P) {
-  double u0, u1, v0, v1;
-  S->Bounds(u0, u1, v0, v1);
-  GeomAPI_ProjectPointOnSurf proj;
-  proj.Init(S, u0, u1, v0, v1);
-  Eigen::VectorXd d(P.rows());
-  for (Index i = 0; i < P.rows(); ++i) {
-    proj.Perform(gp_Pnt(P(i, 0), P(i, 1), P(i, 2)));
-    d(i) = proj.IsDone() && proj.NbPoints() > 0 ? proj.LowerDistance()
-                                                : std::numeric_limits<double>::quiet_NaN();
-  }
-  return d;
-}
-
 // Independent exact distance, for the global-minimum check: Newton's method on
 // f(u,v) = |S(u,v) - p|^2 / 2 with OCCT's second derivatives (Gauss-Newton step where the Hessian
 // is not positive definite; v clamped to its bounds; u continued across the seam of a closed
@@ -200,8 +184,8 @@ struct Measured {
 Measured measure(const std::string& name, const Face& f, const Eigen::MatrixXd& test,
                  const Eigen::MatrixXd& train) {
   Measured m;
-  m.test = occt_distances(f.surface, test);
-  m.train = occt_distances(f.surface, train);
+  m.test = bench::occt_distances(f.surface, test);
+  m.train = bench::occt_distances(f.surface, train);
   check(m.test.allFinite() && m.train.allFinite(), name + ": the projector found every point");
   m.newton = grid_newton_distances(f.surface, test, 2000, 100, 16);
   // Global minimum: the independent search must not find a closer point (1e-12 cm: round-off of

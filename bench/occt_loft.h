@@ -10,8 +10,11 @@
 // "BRepFill :: profiles are inconsistent". The sections already correspond (same point count,
 // orientation and start point, one edge each), so the compatibility pass has nothing to do.
 
+#include "interlin/reconstruction/loft/closest_point.h"
+
 #include <Eigen/Core>
 
+#include <Geom_Surface.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Wire.hxx>
 
@@ -30,5 +33,18 @@ TopoDS_Wire occt_section_wire(const Eigen::MatrixXd& P);
 // Throws std::runtime_error if the build fails, Standard_Failure if OCCT throws.
 TopoDS_Shape occt_thru_sections(const std::vector<TopoDS_Wire>& wires,
                                 bool check_compatibility = false);
+
+// The surface of the first face of a shape (a ThruSections loft has one face).
+// Throws std::runtime_error for a shape without faces.
+Handle(Geom_Surface) occt_first_surface(const TopoDS_Shape& shape);
+
+// Distances of the rows of P (#P by 3) to S by GeomAPI_ProjectPointOnSurf over the whole
+// parameter domain (every extremum, the lowest kept); NaN where the projector finds none.
+Eigen::VectorXd occt_distances(const Handle(Geom_Surface) & S, const Eigen::MatrixXd& P);
+
+// S as a ParametricSurface (OCCT's D0 and D2; u wraps when S is u-periodic or u-closed), so that
+// interlin's project_to_surface measures OCCT's surface with the same code as interlin's own.
+// S is held by the returned functions.
+ParametricSurface occt_parametric(const Handle(Geom_Surface) & S);
 
 } // namespace interlin::bench

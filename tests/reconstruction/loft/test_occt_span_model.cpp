@@ -1,0 +1,106 @@
+// The default spanwise model (leave-one-out choice, span_model.h) on the analytic blade family
+// (support/analytic_blades.h: six twist/taper/lean/sweep laws, sections on planes, cylinders or
+// cones, even, cosine-clustered or hub-clustered stations, 5, 7 or 10 sections, 40 to 140 points
+// per section with their own clustering) against OpenCASCADE ThruSections of the same sections,
+// in the same run. The error between sections is the exact distance of true surface points at
+// the middle of each gap (between_distances, the same code for both surfaces). For run time the
+// test takes 36 of the 54 blades: every law with every spacing for two of the three section
+// counts (bench/blade_family runs all 54).
+//
+// Bounds: the per-case targets of issue 9 (at most 1.0 x OCCT in max and rms on every blade,
+// within 10 % of every fixed option) are not reachable by any choice among the span options on
+// this family: on 7 blades OCCT beats every one of the 12 fixed options, and leave-one-out cannot
+// tell degree #sections-1 from #sections-2 (docs/benchmarks.md, "Spanwise model on analytic
+// blades", has the table of one run of bench/blade_family). What is asserted is what the
+// measurement supports, with margin: exact on every input section, never far worse than OCCT,
+// better than OCCT on most blades and much better on the geometric mean, and better than the
+// previous fixed default (centripetal, cubic) on the geometric mean.
+
+#include "occt_loft.h"
+
+#include "interlin/reconstruction/loft/closest_point.h"
+#include "interlin/reconstruction/loft/loft.h"
+
+#include "support/analytic_blades.h"
+
+#include <catch2/catch.hpp>
+
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_Printer.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using namespace interlin;
+
+namespace {
+
+struct Error {
+  double max = 0, rms = 0;
+};
+
+Error error_of(const Eigen::VectorXd& d) {
+  return {d.maxCoeff(), std::sqrt(d.squaredNorm() / static_cast<double>(d.size()))};
+}
+
+Error loft_error(const test::BladeCase& c, const LoftResult& r) {
+  const PiecewiseSurface S = to_piecewise(r.surface);
+  return error_of(test::between_distances(c, parametric(S)));
+}
+
+Error occt_error(const test::BladeCase& c) {
+  std::vector<TopoDS_Wire> wires;
+  for (const Section& s : c.sections)
+    wires.push_back(bench::occt_section_wire(s.points));
+  return error_of(test::between_distances(
+      c, bench::occt_parametric(bench::occt_first_surface(bench::occt_thru_sections(wires)))));
+}
+
+} // namespace
+
+TEST_CASE("Analytic blade family: the default span model against OpenCASCADE ThruSections",
+          "[occt][span]") {
+  for (Message_SequenceOfPrinters::Iterator it(Message::DefaultMessenger()->Printers()); it.More();
+       it.Next())
+    it.Value()->SetTraceLevel(Message_Fail);
+  LoftOptions previous; // the default before issue 9
+  previous.span = SpanParameters::centripetal;
+  previous.span_degree = 3;
+  std::vector<double> vs_occt, vs_previous;
+  int better_than_occt = 0;
+  for (int i = 0; i < test::kBladeCases; ++i) {
+    if ((i % 6 + i / 18) % 3 == 2) // law i % 6 skips the section count of block i / 18
+      continue;
+    const test::BladeCase c = test::blade_case(i);
+    INFO(c.name);
+    const LoftResult r = loft_sections(c.sections);
+    // Exact on the input sections, as before: round-off of one interpolation per direction.
+    CHECK(r.max_deviation <= 1e-12 * r.bbox_diagonal);
+    CHECK(r.span.chosen);
+    const Error d = loft_error(c, r), o = occt_error(c),
+                p = loft_error(c, loft_sections(c.sections, previous));
+    const double ratio = std::max(d.max / o.max, d.rms / o.rms);
+    INFO("default " << to_string(r.span.used.parameters) << " " << r.span.used.degree << ": max "
+                    << d.max << " rms " << d.rms << "; OCCT max " << o.max << " rms " << o.rms);
+    // Measured worst 1.76 (blade #35: a tie between degrees 5 and 6 that leave-one-out cannot
+    // break); 2 leaves room for platform round-off in the choice, not for a worse method.
+    CHECK(ratio <= 2.0);
+    better_than_occt += ratio <= 1.0;
+    vs_occt.push_back(ratio);
+    vs_previous.push_back(std::max(d.max / p.max, d.rms / p.rms));
+  }
+  const auto geometric_mean = [](const std::vector<double>& x) {
+    double s = 0;
+    for (double v : x)
+      s += std::log(v);
+    return std::exp(s / static_cast<double>(x.size()));
+  };
+  // Measured on these 36 blades: 24 at or below OCCT in both max and rms, geometric mean of the
+  // worse of the two ratios 0.43; against the previous default (centripetal, cubic) 0.56
+  // (bench/blade_family on all 54: 40, 0.44 and 0.55).
+  CHECK(better_than_occt >= 22);
+  CHECK(geometric_mean(vs_occt) <= 0.5);
+  CHECK(geometric_mean(vs_previous) <= 0.65);
+}
