@@ -37,6 +37,12 @@ using namespace interlin;
 
 namespace {
 
+#ifdef INTERLIN_SANITIZED
+constexpr bool kSanitized = true; // ASan + UBSan build: every 4th case (run time ~10x)
+#else
+constexpr bool kSanitized = false;
+#endif
+
 struct Error {
   double max = 0, rms = 0;
 };
@@ -73,6 +79,8 @@ TEST_CASE("Analytic blade family: the default span model against OpenCASCADE Thr
   for (int i = 0; i < test::kBladeCases; ++i) {
     if ((i % 6 + i / 18) % 3 == 2) // law i % 6 skips the section count of block i / 18
       continue;
+    if (kSanitized && i % 4 != 0) // the instrumented build checks memory, not the statistics
+      continue;
     const test::BladeCase c = test::blade_case(i);
     INFO(c.name);
     const LoftResult r = loft_sections(c.sections);
@@ -100,6 +108,8 @@ TEST_CASE("Analytic blade family: the default span model against OpenCASCADE Thr
   // Measured on these 36 blades: 24 at or below OCCT in both max and rms, geometric mean of the
   // worse of the two ratios 0.43; against the previous default (centripetal, cubic) 0.56
   // (bench/blade_family on all 54: 40, 0.44 and 0.55).
+  if (kSanitized)
+    return;
   CHECK(better_than_occt >= 22);
   CHECK(geometric_mean(vs_occt) <= 0.5);
   CHECK(geometric_mean(vs_previous) <= 0.65);
