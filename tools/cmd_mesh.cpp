@@ -85,7 +85,7 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
   --smooth K             K sweeps of functional (12) over the boundary nodes
   The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
   inverted elements (an error unless 0), max |F| at the boundary nodes and the volume.
-  interlin mesh data/models/impeller.rf -o impeller.msh --volume tet --cell 0.1
+  interlin mesh data/models/body11.rf -o body11.msh -o body11.vtu --volume tet --resolution 40
   interlin mesh data/models/body11.rf -o body11.inp --volume hex --resolution 20 --seed-rule
 )";
 

@@ -1,0 +1,97 @@
+// interlin mesh --volume as a user meets it: a model in, .msh/.vtu/.inp and the boundary surface
+// out, the quality summary, the seed's counts with --seed-rule, and usage errors.
+#include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/meshing/mesh_check.h"
+
+#include "support/cli_runner.h"
+#include "support/test_support.h"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+using namespace interlin::test;
+
+namespace {
+
+const char* const kBall = "% unit ball\nbox(-1.2, -1.2, -1.2, 1.2, 1.2, 1.2);\n"
+                          "res = 1 - x^2 - y^2 - z^2;\n";
+
+} // namespace
+
+TEST_CASE("CLI mesh --volume: usage errors", "[cli][mesh][volume]") {
+  TempDir d("climeshvol");
+  write_file(d / "ball.rf", kBall);
+  const std::string m = d / "ball.rf";
+  for (const std::string& bad : std::vector<std::string>{
+           "mesh " + m + " -o x.msh --volume prism",                        // unknown kind
+           "mesh " + m + " -o x.xyz --volume tet",                          // unknown format
+           "mesh " + m + " -o x.stl --margin 0.2",                          // needs --volume
+           "mesh " + m + " -o x.msh --volume tet --margin 1",               // range
+           "mesh " + m + " -o x.msh --volume tet --seed-rule --margin 0.1", // exclusive
+           "mesh " + m + " -o x.msh --volume hex --subboxes 2",             // surface only
+           "mesh " + m + " -o x.msh --volume hex --sweeps -1"}) {           // range
+    const Run r = run(bad + " -q");
+    INFO(bad << " -> " << r.err);
+    CHECK(r.status == 2);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_THAT(r.err, Catch::StartsWith("interlin mesh: "));
+  }
+  CHECK(files_in(d) == 1);
+}
+
+TEST_CASE("CLI mesh --volume: a ball in every format with the quality summary",
+          "[cli][mesh][volume]") {
+  TempDir d("climeshvol");
+  write_file(d / "ball.rf", kBall);
+  for (const std::string kind : {"tet", "hex"}) {
+    const Run r = run("mesh " + (d / "ball.rf") + " --volume " + kind + " --resolution 16 -o " +
+                      (d / "b.msh") + " -o " + (d / "b.vtu") + " -o " + (d / "b.inp") + " -o " +
+                      (d / "b.ply"));
+    INFO(kind << ": " << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("inverted 0") && Catch::Contains("0 not projected") &&
+                          Catch::Contains("dihedral angles"));
+    CHECK_THAT(r.out, Catch::Contains(kind == "tet" ? "tetrahedra" : "hexahedra"));
+    CHECK_THAT(slurp(d / "b.msh"), Catch::StartsWith("$MeshFormat\n4.1 0 8\n"));
+    CHECK_THAT(slurp(d / "b.vtu"), Catch::Contains("<VTKFile type=\"UnstructuredGrid\""));
+    CHECK_THAT(slurp(d / "b.inp"), Catch::Contains(kind == "tet" ? "TYPE=C3D4" : "TYPE=C3D8"));
+    // The boundary surface: closed, genus 0, the ball's volume to a few per cent (h = 0.15).
+    Eigen::MatrixXd V;
+    Eigen::MatrixXi F;
+    interlin::read_mesh(d / "b.ply", V, F);
+    const interlin::MeshReport s = interlin::check_mesh(V, F);
+    CHECK(s.watertight());
+    CHECK(s.genus == 0);
+    CHECK(s.volume == Approx(4 * M_PI / 3).epsilon(0.03));
+  }
+}
+
+TEST_CASE("CLI mesh --volume --seed-rule: seed 003's counts for body (11)", "[cli][mesh][volume]") {
+  TempDir d("climeshvol");
+  // Digest 003 §11.1: 12,948 inner tetrahedra + 3 x 4332 layer, 2158 boundary nodes; 2976 inner
+  // hexahedra + 3072 layer, 3064 boundary nodes. The seed's rule (margin 0) leaves layer elements
+  // of zero thickness where nodes lie on F = 0 (its §6.3: "minimum angle 1 degree, degenerate
+  // hexahedra"): the summary is printed, and a mesh with an inverted element is refused (exit 1,
+  // nothing written).
+  const struct {
+    std::string kind, counts, boundary;
+  } cases[] = {{"tet", "25944 tetrahedra (12948 inner cells, 12996 in the boundary layer)",
+                "2158 nodes on F = 0"},
+               {"hex", "6048 hexahedra (2976 inner cells, 3072 in the boundary layer)",
+                "3064 nodes on F = 0"}};
+  for (const auto& c : cases) {
+    const Run r = run("mesh " INTERLIN_DATA_DIR "/models/body11.rf -o " + (d / "m.inp") +
+                      " --volume " + c.kind + " --resolution 20 --seed-rule --sweeps 0 -q");
+    INFO(c.kind << ": " << r.out << r.err);
+    CHECK_THAT(r.out, Catch::Contains(c.counts) && Catch::Contains(c.boundary));
+    CHECK((r.status == 0 || r.err.find("inverted elements") != std::string::npos));
+    CHECK(files_in(d) == (r.status == 0 ? 1u : 0u));
+    fs::remove(d / "m.inp");
+  }
+}
