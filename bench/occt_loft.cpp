@@ -84,8 +84,8 @@ ParametricSurface occt_parametric(const Handle(Geom_Surface) & S) {
     gp_Pnt q;
     gp_Vec su, sv, suu, svv, suv;
     A->D2(u, v, q, su, sv, suu, svv, suv);
-    return SurfaceDerivatives{vec(q.XYZ()),   vec(su.XYZ()),  vec(sv.XYZ()),
-                              vec(suu.XYZ()), vec(suv.XYZ()), vec(svv.XYZ())};
+    return SurfaceJet{vec(q.XYZ()),   vec(su.XYZ()),  vec(sv.XYZ()),
+                      vec(suu.XYZ()), vec(suv.XYZ()), vec(svv.XYZ())};
   };
   return p;
 }

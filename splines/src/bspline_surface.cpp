@@ -133,43 +133,36 @@ Vector3d evaluate(const PiecewiseSurface& s, double u, double v, int du, int dv)
   return {out[0], out[1], out[2]};
 }
 
-SurfaceDerivatives evaluate_derivatives(const PiecewiseSurface& s, double u, double v) {
+SurfaceJet evaluate_jet(const PiecewiseSurface& s, double u, double v) {
   const int pu = s.degree_u, pv = s.degree_v;
   const Index a = locate(s.breaks_u, s.closed_u, u), b = locate(s.breaks_v, false, v);
-  // Monomials (x - x_patch)^i and their first and second derivatives, for u and for v.
-  const auto powers = [](int p, double h) {
-    Eigen::Matrix3Xd m = Eigen::Matrix3Xd::Zero(3, p + 1);
-    double hi = 1; // h^i
-    for (int i = 0; i <= p; ++i, hi *= h) {
-      m(0, i) = hi;
-      if (i + 1 <= p)
-        m(1, i + 1) = (i + 1) * hi;
-      if (i + 2 <= p)
-        m(2, i + 2) = (i + 2) * (i + 1) * hi;
-    }
-    return m;
-  };
-  const Eigen::Matrix3Xd U = powers(pu, u - s.breaks_u(a)), V = powers(pv, v - s.breaks_v(b));
+  const double hu = u - s.breaks_u(a), hv = v - s.breaks_v(b);
   const Index sv = s.breaks_v.size() - 1;
-  const auto C = s.coeffs.middleRows((a * sv + b) * (pu + 1) * (pv + 1), (pu + 1) * (pv + 1));
-  SurfaceDerivatives d{Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero(),
-                       Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero()};
-  for (int i = 0; i <= pu; ++i) {
-    Vector3d r0 = Vector3d::Zero(), r1 = Vector3d::Zero(), r2 = Vector3d::Zero(); // v-sums
-    for (int j = 0; j <= pv; ++j) {
-      const Vector3d c = C.row(i * (pv + 1) + j).transpose();
-      r0 += V(0, j) * c;
-      r1 += V(1, j) * c;
-      r2 += V(2, j) * c;
+  const double* C = s.coeffs.data();
+  const Index stride = s.coeffs.rows(); // column-major: component c of row r is C[r + c * stride]
+  const Index base = (a * sv + b) * (pu + 1) * (pv + 1);
+  SurfaceJet J;
+  for (int c = 0; c < 3; ++c) {
+    double S = 0, Su = 0, Sv = 0, Suu = 0, Suv = 0, Svv = 0;
+    for (int i = pu; i >= 0; --i) {
+      // r0, r1, r2: the coefficient of (u - u_a)^i and its first and second v-derivatives
+      double r0 = 0, r1 = 0, r2 = 0;
+      const double* row = C + base + i * (pv + 1) + c * stride;
+      for (int j = pv; j >= 0; --j) {
+        r2 = r2 * hv + r1 * 2;
+        r1 = r1 * hv + r0;
+        r0 = r0 * hv + row[j];
+      }
+      Suu = Suu * hu + Su * 2;
+      Su = Su * hu + S;
+      S = S * hu + r0;
+      Suv = Suv * hu + Sv;
+      Sv = Sv * hu + r1;
+      Svv = Svv * hu + r2;
     }
-    d.S += U(0, i) * r0;
-    d.Su += U(1, i) * r0;
-    d.Suu += U(2, i) * r0;
-    d.Sv += U(0, i) * r1;
-    d.Suv += U(1, i) * r1;
-    d.Svv += U(0, i) * r2;
+    J.S(c) = S, J.Su(c) = Su, J.Sv(c) = Sv, J.Suu(c) = Suu, J.Suv(c) = Suv, J.Svv(c) = Svv;
   }
-  return d;
+  return J;
 }
 
 MatrixXd evaluate_grid(const PiecewiseSurface& s, const VectorXd& u, const VectorXd& v) {

@@ -37,7 +37,7 @@ Foot newton_foot(const ParametricSurface& S, const Vector3d& p, double u, double
   Vector3d x = S.point(u, v);
   double f = 0.5 * (x - p).squaredNorm();
   for (int it = 0; it < 50; ++it) {
-    const SurfaceDerivatives d = S.derivatives(u, v);
+    const SurfaceJet d = S.derivatives(u, v);
     const Vector3d r = x - p;
     const Vector2d g(d.Su.dot(r), d.Sv.dot(r));
     Eigen::Matrix2d H;
@@ -95,7 +95,7 @@ void store(SurfaceProjection& out, Index i, const Foot& f) {
 
 ParametricSurface parametric(const PiecewiseSurface& S) {
   return {domain(S), S.closed_u, [&S](double u, double v) { return evaluate(S, u, v); },
-          [&S](double u, double v) { return evaluate_derivatives(S, u, v); }};
+          [&S](double u, double v) { return evaluate_jet(S, u, v); }};
 }
 
 SurfaceProjection project_to_surface(const PiecewiseSurface& S, const MatrixXd& P, int su, int sv,

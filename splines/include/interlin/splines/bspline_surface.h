@@ -36,12 +36,15 @@ PiecewiseSurface to_piecewise(const BSplineSurface& s);
 // Partial derivative d^(du+dv) S / du^du dv^dv at (u, v); (0,0) is the point.
 Eigen::Vector3d evaluate(const PiecewiseSurface& s, double u, double v, int du = 0, int dv = 0);
 
-// The point and every partial derivative of order 1 and 2 at (u, v), from one patch lookup and
-// one pass over its coefficients (the six evaluate() calls of a Newton step in one).
-struct SurfaceDerivatives {
-  Eigen::Vector3d S, Su, Sv, Suu, Suv, Svv;
+// The second-order jet of S at (u, v): the point and its partial derivatives up to order 2, in
+// one pass over the patch's coefficients (Horner in v for the three v-orders, then in u).
+// Outside the domain (open directions) the end patches' polynomials are extended.
+struct SurfaceJet {
+  Eigen::Vector3d S = Eigen::Vector3d::Zero(), Su = Eigen::Vector3d::Zero(),
+                  Sv = Eigen::Vector3d::Zero(), Suu = Eigen::Vector3d::Zero(),
+                  Suv = Eigen::Vector3d::Zero(), Svv = Eigen::Vector3d::Zero();
 };
-SurfaceDerivatives evaluate_derivatives(const PiecewiseSurface& s, double u, double v);
+SurfaceJet evaluate_jet(const PiecewiseSurface& s, double u, double v);
 
 // S at every pair of the grid u x v. Output: (#u * #v) by 3, row i + #u * j.
 Eigen::MatrixXd evaluate_grid(const PiecewiseSurface& s, const Eigen::VectorXd& u,

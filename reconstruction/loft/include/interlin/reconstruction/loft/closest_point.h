@@ -20,7 +20,7 @@ struct ParametricSurface {
   Eigen::Vector4d domain;
   bool closed_u = false;
   std::function<Eigen::Vector3d(double u, double v)> point;
-  std::function<SurfaceDerivatives(double u, double v)> derivatives;
+  std::function<SurfaceJet(double u, double v)> derivatives;
 };
 
 // The B-spline surface in explicit form as a ParametricSurface (S must outlive the result).
