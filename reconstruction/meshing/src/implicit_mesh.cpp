@@ -1,7 +1,7 @@
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
 
+#include "interlin/reconstruction/meshing/parallel_for.h"
 #include "iso_block.h"
-#include "parallel.h"
 
 #include <atomic>
 #include <chrono>

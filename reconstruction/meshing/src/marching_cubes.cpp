@@ -1,8 +1,8 @@
 #include "interlin/reconstruction/meshing/marching_cubes.h"
 
+#include "interlin/reconstruction/meshing/parallel_for.h"
 #include "iso_block.h"
 #include "mc_table.h"
-#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>

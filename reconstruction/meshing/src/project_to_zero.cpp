@@ -1,6 +1,6 @@
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 
-#include "parallel.h"
+#include "interlin/reconstruction/meshing/parallel_for.h"
 
 #include <algorithm>
 #include <cmath>

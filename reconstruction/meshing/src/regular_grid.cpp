@@ -1,6 +1,6 @@
 #include "interlin/reconstruction/meshing/regular_grid.h"
 
-#include "parallel.h"
+#include "interlin/reconstruction/meshing/parallel_for.h"
 
 #include <cmath>
 #include <stdexcept>
