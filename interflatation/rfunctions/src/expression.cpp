@@ -37,6 +37,11 @@ int arity(Op op) {
   case Op::curve_du:
   case Op::curve_dv:
     return 2;
+  case Op::field:
+  case Op::field_dx:
+  case Op::field_dy:
+  case Op::field_dz:
+    return 3;
   default:
     return 1;
   }
@@ -44,10 +49,12 @@ int arity(Op op) {
 
 const char* op_name(Op op) {
   static const char* const names[] = {
-      "constant", "x",        "y",     "z",     "add",   "sub",   "mul",   "div",   "neg",  "pow_k",
-      "pow",      "sqrt",     "abs",   "sign",  "sin",   "cos",   "tan",   "asin",  "acos", "atan",
-      "atan2",    "exp",      "log",   "min",   "max",   "hypot", "ratio", "and0",  "or0",  "curve",
-      "curve_du", "curve_dv", "add_k", "mul_k", "k_sub", "k_div", "div_k", "square"};
+      "constant", "x",     "y",        "z",        "add",   "sub",      "mul",
+      "div",      "neg",   "pow_k",    "pow",      "sqrt",  "abs",      "sign",
+      "sin",      "cos",   "tan",      "asin",     "acos",  "atan",     "atan2",
+      "exp",      "log",   "min",      "max",      "hypot", "ratio",    "and0",
+      "or0",      "curve", "curve_du", "curve_dv", "field", "field_dx", "field_dy",
+      "field_dz", "add_k", "mul_k",    "k_sub",    "k_div", "div_k",    "square"};
   return names[static_cast<int>(op)];
 }
 
@@ -127,10 +134,27 @@ bool is_const(const NodePtr& n, double v) {
 } // namespace
 
 // Drops the identities that graph differentiation produces in bulk (x + 0, x * 1, x * 0, ...).
-NodePtr make(Op op, NodePtr a, NodePtr b, double k, std::shared_ptr<const Polyline> curve) {
+double field_value(Op op, const ImplicitFunction& field, double x, double y, double z) {
+  Points3 P(1, 3);
+  P << x, y, z;
+  Eigen::VectorXd F(1);
+  if (op == Op::field) {
+    field.value(P, F);
+    return F(0);
+  }
+  Points3 G(1, 3);
+  field.gradient(P, F, G);
+  return G(0, static_cast<int>(op) - static_cast<int>(Op::field_dx));
+}
+
+NodePtr make(Op op, NodePtr a, NodePtr b, double k, std::shared_ptr<const Polyline> curve,
+             NodePtr c, std::shared_ptr<const ImplicitFunction> field) {
   const bool ca = a && a->op == Op::constant;
   const bool cb = !b || b->op == Op::constant;
-  if (ca && cb) {
+  const bool cc = !c || c->op == Op::constant;
+  if (ca && cb && cc) {
+    if (field)
+      return leaf(Op::constant, field_value(op, *field, a->k, b->k, c->k));
     if (curve) {
       double du = 0, dv = 0;
       const double d = curve->signed_distance(a->k, b->k, &du, &dv);
@@ -194,13 +218,15 @@ NodePtr make(Op op, NodePtr a, NodePtr b, double k, std::shared_ptr<const Polyli
   auto n = std::make_shared<Node>();
   n->op = op;
   n->k = k;
-  n->depth = 1 + std::max(a->depth, b ? b->depth : 0);
+  n->depth = 1 + std::max({a->depth, b ? b->depth : 0, c ? c->depth : 0});
   if (n->depth > kMaxDepth)
     throw std::invalid_argument("expression too deep: more than " + std::to_string(kMaxDepth) +
                                 " nested operations");
   n->a = std::move(a);
   n->b = std::move(b);
+  n->c = std::move(c);
   n->curve = std::move(curve);
+  n->field = std::move(field);
   return n;
 }
 
@@ -286,6 +312,13 @@ Expr max(const Expr& a, const Expr& b) {
 }
 Expr hypot(const Expr& a, const Expr& b) {
   return E(make(Op::hypot, a.node(), b.node()));
+}
+
+Expr field(std::shared_ptr<const ImplicitFunction> body, const Expr& X, const Expr& Y,
+           const Expr& Z) {
+  if (!body || !body->value || !body->gradient)
+    throw std::invalid_argument("field: the body needs a value and a gradient function");
+  return E(make(Op::field, X.node(), Y.node(), 0, nullptr, Z.node(), std::move(body)));
 }
 
 namespace {
@@ -385,6 +418,17 @@ private:
     case Op::curve_du:
     case Op::curve_dv:
       return c(0);
+    case Op::field: { // grad of the body's function; its own derivatives are taken as 0
+      auto partial = [&](Op o) { return make(o, a, b, 0, nullptr, n->c, n->field); };
+      return make(Op::add,
+                  make(Op::add, make(Op::mul, partial(Op::field_dx), d(a)),
+                       make(Op::mul, partial(Op::field_dy), d(b))),
+                  make(Op::mul, partial(Op::field_dz), d(n->c)));
+    }
+    case Op::field_dx:
+    case Op::field_dy:
+    case Op::field_dz:
+      return c(0);
     default:
       throw std::logic_error(std::string("derivative: unexpected operation ") + op_name(n->op));
     }
@@ -417,7 +461,9 @@ public:
       return it->second;
     NodePtr a = s(n->a);
     NodePtr b = n->b ? s(n->b) : nullptr;
-    NodePtr r = (a == n->a && b == n->b) ? n : make(n->op, a, b, n->k, n->curve);
+    NodePtr c = n->c ? s(n->c) : nullptr;
+    NodePtr r =
+        (a == n->a && b == n->b && c == n->c) ? n : make(n->op, a, b, n->k, n->curve, c, n->field);
     memo_.emplace(n.get(), r);
     return r;
   }

@@ -6,6 +6,7 @@
 #include "interlin/interflatation/rfunctions/model_expression.h"
 
 #include "interlin/interflatation/input_error.h"
+#include "interlin/interflatation/models/ifl_registry.h"
 #include "interlin/interflatation/rfunctions/curve_distance.h"
 #include "interlin/interflatation/rfunctions/expression.h"
 #include "interlin/interflatation/rfunctions/folding.h"
@@ -21,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <numbers>
@@ -41,8 +43,9 @@ using rf::detail::throw_at;
 struct Value {
   Value(Expr expr = 0.0) : e(std::move(expr)) {} // NOLINT: an expression is a value
   Expr e;
-  bool is_list = false;
+  bool is_list = false, is_text = false;
   std::vector<double> list;
+  std::string text;
 };
 
 std::string number_text(double v) {
@@ -62,6 +65,9 @@ public:
     throw_at(file_, i >= 0 ? call_.args[i].pos : call_.pos, call_.name + ": " + message);
   }
   Expr e(int i) const {
+    if (v_[i].is_text)
+      fail(i, "argument " + std::to_string(i + 1) +
+                  " is a text; a number or an expression is expected");
     if (v_[i].is_list)
       fail(i, "argument " + std::to_string(i + 1) +
                   " is a list; a number or an expression is expected");
@@ -80,6 +86,13 @@ public:
       fail(i, "argument " + std::to_string(i + 1) + " must be an integer from " +
                   std::to_string(lo) + " to " + std::to_string(hi) + ", got " + number_text(x));
     return static_cast<int>(x);
+  }
+  // A file named by a text argument, relative to the model file's directory.
+  std::string path(int i) const {
+    if (!v_[i].is_text)
+      fail(i, "argument " + std::to_string(i + 1) + " must be a file name in quotes, \"...\"");
+    const std::filesystem::path p(v_[i].text);
+    return p.is_absolute() ? p.string() : (std::filesystem::path(file_).parent_path() / p).string();
   }
   const std::vector<double>& list(int i) const {
     if (!v_[i].is_list)
@@ -237,6 +250,16 @@ const std::map<std::string, Builtin>& builtins() {
         7, 7,
         [](A a) { return blend_segment(a.e(0), a.e(1), a.e(2), a.e(3), a.e(4), a.e(5), a.e(6)); }};
     t["arc_frame"] = {4, 4, [](A a) { return arc_frame(a.e(0), a.e(1), a.e(2), a.num(3)); }};
+    // implicit bodies of .ifl files (seed 001 ch. 4 models, point-cloud fits) as operands
+    t["ifl"] = {1, 1, [](A a) {
+                  std::shared_ptr<const ImplicitFunction> body;
+                  try {
+                    body = std::make_shared<const ImplicitFunction>(load_ifl(a.path(0)));
+                  } catch (const InputError& e) {
+                    a.fail(0, e.what());
+                  }
+                  return rf::field(std::move(body), Expr::x(), Expr::y(), Expr::z());
+                }};
     // regions bounded by curves (seed 003 §3.3)
     t["polygon_region"] = {3, 3, [](A a) { return polygon_region(a.e(0), a.e(1), a.points(2)); }};
     t["bezier_region"] = {
@@ -354,7 +377,7 @@ private:
       double b[6];
       for (int k = 0; k < 6; ++k) {
         const Value v = eval(st.exprs[k], globals_, defs_, 0);
-        if (v.is_list || !v.e.is_constant() || !std::isfinite(v.e.constant_value()))
+        if (v.is_list || v.is_text || !v.e.is_constant() || !std::isfinite(v.e.constant_value()))
           fail(st.exprs[k].pos, "box bounds must be finite constants");
         b[k] = v.e.constant_value();
       }
@@ -393,8 +416,9 @@ private:
       if (st.name == "def" || st.name == "param" || st.name == "box")
         fail(st.pos, "'" + st.name + "' is a keyword");
       const Value v = eval(st.exprs[0], globals_, defs_, 0);
-      if (v.is_list)
-        fail(st.exprs[0].pos, "a list cannot be assigned to a variable; write it in the call");
+      if (v.is_list || v.is_text)
+        fail(st.exprs[0].pos, std::string("a ") + (v.is_list ? "list" : "text") +
+                                  " cannot be assigned to a variable; write it in the call");
       Expr e = v.e;
       if (st.kind == Statement::Kind::param) {
         if (declared_params_.count(st.name))
@@ -429,12 +453,18 @@ private:
         fail(a.pos, "'" + a.name + "' is a function; call it as " + a.name + "(...)");
       fail(a.pos, "unknown variable '" + a.name + "'" + hint(a.name, scope));
     }
+    case Ast::Kind::text: {
+      Value v;
+      v.is_text = true;
+      v.text = a.name;
+      return v;
+    }
     case Ast::Kind::list: {
       Value v;
       v.is_list = true;
       for (const Ast& item : a.args) {
         const Value x = eval(item, scope, defs, depth);
-        if (x.is_list || !x.e.is_constant() || !std::isfinite(x.e.constant_value()))
+        if (x.is_list || x.is_text || !x.e.is_constant() || !std::isfinite(x.e.constant_value()))
           fail(item.pos, "list entries must be finite constants");
         v.list.push_back(x.e.constant_value());
       }
@@ -470,6 +500,8 @@ private:
     Value v = eval(a, scope, defs, depth);
     if (v.is_list)
       fail(a.pos, "a list [...] can only be an argument of polygon_region or bezier_region");
+    if (v.is_text)
+      fail(a.pos, "a text \"...\" can only be the file name argument of ifl(\"...\")");
     return v.e;
   }
 
@@ -486,8 +518,8 @@ private:
                         " argument(s), got " + std::to_string(n));
       Scope local = *def.scope;
       for (int i = 0; i < n; ++i) {
-        if (args[i].is_list)
-          fail(a.args[i].pos, "a list cannot be passed to a user function");
+        if (args[i].is_list || args[i].is_text)
+          fail(a.args[i].pos, "a list or a text cannot be passed to a user function");
         local[def.params[i]] = args[i].e;
       }
       return scalar(def.body, local, *def.defs, depth + 1);

@@ -19,7 +19,7 @@ void throw_at(const std::string& file, Pos pos, const std::string& message) {
 namespace {
 
 struct Token {
-  enum class Kind { number, ident, symbol, end };
+  enum class Kind { number, ident, symbol, text, end };
   Kind kind = Kind::end;
   Pos pos;
   std::string text; // identifier, number text or symbol (one of + - * / ^ ( ) , ; = [ ])
@@ -34,6 +34,8 @@ std::string describe(const Token& t) {
     return "the number " + t.text;
   case Token::Kind::ident:
     return "'" + t.text + "'";
+  case Token::Kind::text:
+    return "the text \"" + t.text + "\"";
   default:
     return "'" + t.text + "'";
   }
@@ -119,6 +121,18 @@ std::vector<Token> lex(const std::string& s, const std::string& file) {
       t.kind = Token::Kind::symbol; // MATLAB's element-wise operators are the plain ones here
       t.text = std::string(1, s[i + 1]);
       i += 2;
+      out.push_back(t);
+      continue;
+    }
+    if (c == '"') { // a text: a file name, on one line, without escapes
+      const std::size_t b = ++i;
+      while (i < s.size() && s[i] != '"' && s[i] != '\n')
+        ++i;
+      if (i >= s.size() || s[i] != '"')
+        throw_at(file, t.pos, "unterminated text: a closing '\"' is missing on this line");
+      t.kind = Token::Kind::text;
+      t.text = s.substr(b, i - b);
+      ++i;
       out.push_back(t);
       continue;
     }
@@ -336,6 +350,12 @@ private:
       expect(")",
              "to close '(' at " + std::to_string(t.pos.line) + ":" + std::to_string(t.pos.column));
       return inner;
+    }
+    if (t.kind == Token::Kind::text) {
+      next();
+      a.kind = Ast::Kind::text;
+      a.name = t.text;
+      return a;
     }
     if (is_symbol("[")) {
       next();

@@ -13,11 +13,11 @@ struct Pos {
 };
 
 struct Ast {
-  enum class Kind { number, name, call, unary, binary, list };
+  enum class Kind { number, name, call, unary, binary, list, text };
   Kind kind = Kind::number;
   Pos pos;
   double number = 0;
-  std::string name; // variable or function name
+  std::string name; // variable or function name; the characters of a text ("...")
   char op = 0;      // + - * / ^ for unary and binary
   int height = 1;   // nodes on the longest path down to a leaf (the recursion depth of passes)
   std::vector<Ast> args;

@@ -2,6 +2,7 @@
 // Internal: the node of an R-function expression graph. Expressions are immutable trees of shared
 // nodes (a DAG once variables are reused); compile() hash-conses them into a program.
 
+#include "interlin/interflatation/implicit_function.h"
 #include "interlin/interflatation/limits.h"
 
 #include <Eigen/Core>
@@ -51,6 +52,12 @@ enum class Op : unsigned char {
   curve,
   curve_du,
   curve_dv,
+  // an implicit body from elsewhere (an .ifl model) at the point (a, b, c), and its partial
+  // derivatives
+  field,
+  field_dx,
+  field_dy,
+  field_dz,
   // immediate forms, only in compiled programs: one operand and the constant k
   add_k,  // a + k
   mul_k,  // a * k
@@ -76,10 +83,11 @@ inline constexpr int kMaxDepth = limits::expression_depth;
 
 struct Node {
   Op op;
-  double k = 0;  // the constant of `constant` and `pow_k`
-  int depth = 0; // longest chain of operands below this node
-  std::shared_ptr<const Node> a, b;
-  std::shared_ptr<const Polyline> curve; // for the curve operations
+  double k = 0;                                  // the constant of `constant` and `pow_k`
+  int depth = 0;                                 // longest chain of operands below this node
+  std::shared_ptr<const Node> a, b, c;           // c: the third operand of the field ops
+  std::shared_ptr<const Polyline> curve;         // for the curve operations
+  std::shared_ptr<const ImplicitFunction> field; // for the field operations
 };
 
 using NodePtr = std::shared_ptr<const Node>;
@@ -107,6 +115,10 @@ private:
 
 // The one constructor of operation nodes: folds constants and drops identities (x + 0, x * 1, ...).
 NodePtr make(Op op, NodePtr a, NodePtr b = nullptr, double k = 0,
-             std::shared_ptr<const Polyline> curve = nullptr);
+             std::shared_ptr<const Polyline> curve = nullptr, NodePtr c = nullptr,
+             std::shared_ptr<const ImplicitFunction> field = nullptr);
+
+// The value (op field) or a partial derivative (field_dx, ...) of `field` at one point.
+double field_value(Op op, const ImplicitFunction& field, double x, double y, double z);
 
 } // namespace interlin::rf::detail

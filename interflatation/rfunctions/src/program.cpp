@@ -32,13 +32,16 @@ struct Instr {
   int dst = 0, a = 0, b = 0; // register slots; b = a for unary operations
   double k = 0;
   const Polyline* curve = nullptr;
+  int c = 0; // third operand slot (field operations), else a
+  const ImplicitFunction* field = nullptr;
 };
 
 struct Program {
   std::vector<Instr> code;
   int slots = 0;
   int out = 0;
-  std::vector<std::shared_ptr<const Polyline>> curves; // keeps the curve tables alive
+  std::vector<std::shared_ptr<const Polyline>> curves;         // keeps the curve tables alive
+  std::vector<std::shared_ptr<const ImplicitFunction>> fields; // and the fields
 };
 
 // Merges equal sub-expressions (same operation, constant and operands) into one numbered node,
@@ -50,6 +53,8 @@ public:
     double k;
     int a, b;
     std::shared_ptr<const Polyline> curve;
+    int c;
+    std::shared_ptr<const ImplicitFunction> field;
   };
   std::vector<Item> items;
 
@@ -59,18 +64,20 @@ public:
       return seen->second;
     const int a = n->a ? visit(n->a) : -1;
     const int b = n->b ? visit(n->b) : -1;
+    const int c = n->c ? visit(n->c) : -1;
     std::uint64_t kbits;
     std::memcpy(&kbits, &n->k, sizeof kbits);
-    const Key key{static_cast<int>(n->op), kbits, a, b, n->curve.get()};
+    const Key key{static_cast<int>(n->op), kbits, a, b, n->curve.get(), c, n->field.get()};
     auto [it, inserted] = by_key_.emplace(key, static_cast<int>(items.size()));
     if (inserted)
-      items.push_back({n->op, n->k, a, b, n->curve});
+      items.push_back({n->op, n->k, a, b, n->curve, c, n->field});
     by_ptr_.emplace(n.get(), it->second);
     return it->second;
   }
 
 private:
-  using Key = std::tuple<int, std::uint64_t, int, int, const Polyline*>;
+  using Key =
+      std::tuple<int, std::uint64_t, int, int, const Polyline*, int, const ImplicitFunction*>;
   std::map<Key, int> by_key_;
   std::unordered_map<const Node*, int> by_ptr_;
 };
@@ -91,7 +98,14 @@ Program build_program(const NodePtr& root) {
     if (!needed[i])
       continue;
     const auto& it = items[i];
-    Instr in{it.op, i, it.a, it.b < 0 ? it.a : it.b, it.k, it.curve.get()};
+    Instr in{it.op,
+             i,
+             it.a,
+             it.b < 0 ? it.a : it.b,
+             it.k,
+             it.curve.get(),
+             it.c < 0 ? it.a : it.c,
+             it.field.get()};
     const bool ca = is_c(it.a), cb = is_c(it.b);
     if (it.op == Op::add && (ca || cb))
       in = {Op::add_k, i, ca ? it.b : it.a, ca ? it.b : it.a, items[ca ? it.a : it.b].k};
@@ -111,6 +125,7 @@ Program build_program(const NodePtr& root) {
     if (detail::arity(it.op) > 0) {
       needed[in.a] = true;
       needed[in.b] = true;
+      needed[in.c] = true;
     }
   }
   for (int i = 0; i < n; ++i)
@@ -124,19 +139,21 @@ Program build_program(const NodePtr& root) {
     if (detail::arity(items[code[j].dst].op) > 0) {
       last_use[code[j].a] = j;
       last_use[code[j].b] = j;
+      last_use[code[j].c] = j;
     }
   last_use[root_id] = static_cast<int>(code.size());
   std::vector<int> slot_of(n, -1), free_slots;
   int slots = 0;
   for (int j = 0; j < static_cast<int>(code.size()); ++j) {
     Instr& in = code[j];
-    const int item = in.dst, ia = in.a, ib = in.b; // item ids, before they become slots
+    const int item = in.dst, ia = in.a, ib = in.b, ic = in.c; // item ids, before slots
     const bool leaf = detail::arity(items[item].op) == 0;
     if (!leaf) {
       in.a = slot_of[in.a];
       in.b = slot_of[in.b];
+      in.c = slot_of[in.c];
     } else {
-      in.a = in.b = 0;
+      in.a = in.b = in.c = 0;
     }
     int s;
     if (!free_slots.empty()) {
@@ -148,7 +165,7 @@ Program build_program(const NodePtr& root) {
     slot_of[item] = s;
     in.dst = s;
     if (!leaf)
-      for (int operand : {ia, ib})
+      for (int operand : {ia, ib, ic})
         if (last_use[operand] == j && slot_of[operand] >= 0) {
           free_slots.push_back(slot_of[operand]);
           slot_of[operand] = -1; // freed once, even when read twice
@@ -158,9 +175,12 @@ Program build_program(const NodePtr& root) {
   p.code = std::move(code);
   p.slots = slots;
   p.out = slot_of[root_id];
-  for (const auto& it : items)
+  for (const auto& it : items) {
     if (it.curve)
       p.curves.push_back(it.curve);
+    if (it.field)
+      p.fields.push_back(it.field);
+  }
   return p;
 }
 
@@ -194,6 +214,32 @@ void run_curve(const Instr& in, double* r, const double* A, const double* B, int
   }
 }
 
+// The field operations on a block: the body's function at the points (A, B, C), with its
+// gradient unless only the value is asked for. The body may itself be a compiled program (it
+// runs on its own scratch level).
+void field_block(const Instr& in, const double* A, const double* B, const double* C, int n,
+                 bool with_gradient, Eigen::VectorXd& F, Points3& G) {
+  Points3 P(n, 3);
+  for (int i = 0; i < n; ++i)
+    P.row(i) << A[i], B[i], C[i];
+  F.resize(n);
+  G.resize(n, 3);
+  if (with_gradient)
+    in.field->gradient(P, F, G);
+  else
+    in.field->value(P, F);
+}
+
+void run_field(const Instr& in, double* r, const double* A, const double* B, const double* C,
+               int n) {
+  Eigen::VectorXd F;
+  Points3 G;
+  field_block(in, A, B, C, n, in.op != Op::field, F, G);
+  const int axis = static_cast<int>(in.op) - static_cast<int>(Op::field_dx);
+  for (int i = 0; i < n; ++i)
+    r[i] = in.op == Op::field ? F(i) : G(i, axis);
+}
+
 template <int N>
 void evaluate_block(const Program& p, const double* const xyz[3], int n, double* regs,
                     double* out) {
@@ -204,6 +250,12 @@ void evaluate_block(const Program& p, const double* const xyz[3], int n, double*
     const double* A = reg(in.a);
     const double* B = reg(in.b);
     switch (in.op) {
+    case Op::field:
+    case Op::field_dx:
+    case Op::field_dy:
+    case Op::field_dz:
+      run_field(in, r, A, B, reg(in.c), n);
+      break;
     case Op::constant:
       std::fill(r, r + n, in.k);
       break;
@@ -272,6 +324,24 @@ void dual_curve(const Instr& in, const Dual& r, const Dual& A, const Dual& B, in
   }
 }
 
+void dual_field(const Instr& in, const Dual& r, const Dual& A, const Dual& B, const Dual& C,
+                int n) {
+  Eigen::VectorXd F;
+  Points3 G;
+  field_block(in, A.v, B.v, C.v, n, true, F, G);
+  for (int i = 0; i < n; ++i) {
+    if (in.op == Op::field) { // the body's own second derivatives are taken as 0
+      r.v[i] = F(i);
+      for (int c = 0; c < 3; ++c)
+        r.d[c][i] = G(i, 0) * A.d[c][i] + G(i, 1) * B.d[c][i] + G(i, 2) * C.d[c][i];
+    } else {
+      r.v[i] = G(i, static_cast<int>(in.op) - static_cast<int>(Op::field_dx));
+      for (int c = 0; c < 3; ++c)
+        r.d[c][i] = 0;
+    }
+  }
+}
+
 template <int N>
 void gradient_block(const Program& p, const double* const xyz[3], int n, double* regs, double* F,
                     double* G[3]) {
@@ -283,6 +353,12 @@ void gradient_block(const Program& p, const double* const xyz[3], int n, double*
   for (const Instr& in : p.code) {
     const Dual r = reg(in.dst), A = reg(in.a), B = reg(in.b);
     switch (in.op) {
+    case Op::field:
+    case Op::field_dx:
+    case Op::field_dy:
+    case Op::field_dz:
+      dual_field(in, r, A, B, reg(in.c), n);
+      break;
     case Op::constant:
     case Op::x:
     case Op::y:
@@ -319,12 +395,35 @@ void gradient_block(const Program& p, const double* const xyz[3], int n, double*
   }
 }
 
-std::vector<double>& scratch(std::size_t size) {
-  thread_local std::vector<double> buffer;
-  if (buffer.size() < size)
-    buffer.resize(size);
-  return buffer;
-}
+// Register memory of the current thread, one buffer per nesting level: a program may evaluate a
+// field that is itself a program, in the middle of a block.
+class Scratch {
+public:
+  explicit Scratch(std::size_t size) : level_(depth()++) {
+    std::vector<std::vector<double>>& pool = buffers();
+    if (pool.size() <= level_)
+      pool.resize(level_ + 1);
+    if (pool[level_].size() < size)
+      pool[level_].resize(size);
+    data_ = pool[level_].data();
+  }
+  ~Scratch() { --depth(); }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+  double* data() const { return data_; }
+
+private:
+  static std::size_t& depth() {
+    thread_local std::size_t d = 0;
+    return d;
+  }
+  static std::vector<std::vector<double>>& buffers() {
+    thread_local std::vector<std::vector<double>> b;
+    return b;
+  }
+  std::size_t level_;
+  double* data_;
+};
 
 void check_sizes(const char* what, Eigen::Index rows, Eigen::Index f_rows) {
   if (rows != f_rows)
@@ -352,7 +451,8 @@ ImplicitFunction compile(const Expr& F, const Eigen::AlignedBox3d& box) {
   f.value = [prog](const Eigen::Ref<const Points3>& P, Eigen::Ref<Eigen::VectorXd> out) {
     check_sizes("value", P.rows(), out.size());
     const Eigen::Index m = P.rows();
-    double* regs = scratch(static_cast<std::size_t>(prog->slots) * kBlock).data();
+    const Scratch scratch(static_cast<std::size_t>(prog->slots) * kBlock);
+    double* regs = scratch.data();
     for (Eigen::Index s = 0; s < m; s += kBlock) {
       const int n = static_cast<int>(std::min<Eigen::Index>(kBlock, m - s));
       const double* c[3] = {col(P, 0) + s, col(P, 1) + s, col(P, 2) + s};
@@ -367,7 +467,8 @@ ImplicitFunction compile(const Expr& F, const Eigen::AlignedBox3d& box) {
     check_sizes("gradient", P.rows(), out.size());
     check_sizes("gradient", P.rows(), G.rows());
     const Eigen::Index m = P.rows();
-    double* regs = scratch(static_cast<std::size_t>(prog->slots) * 4 * kBlock).data();
+    const Scratch scratch(static_cast<std::size_t>(prog->slots) * 4 * kBlock);
+    double* regs = scratch.data();
     for (Eigen::Index s = 0; s < m; s += kBlock) {
       const int n = static_cast<int>(std::min<Eigen::Index>(kBlock, m - s));
       double* g[3] = {G.col(0).data() + s, G.col(1).data() + s, G.col(2).data() + s};

@@ -66,6 +66,14 @@ Expr min(const Expr& a, const Expr& b);
 Expr max(const Expr& a, const Expr& b);
 Expr hypot(const Expr& a, const Expr& b); // sqrt(a^2 + b^2)
 
+// An implicit body defined elsewhere (an .ifl model, any ImplicitFunction) as an operand,
+// evaluated at the point (X, Y, Z): R-operations can combine it with primitives, transforms move
+// it. Its gradient comes from body->gradient (its own second derivatives are taken as 0), so
+// derivative() and compile()'s gradient work through it. The body is called once per block of
+// points. Throws std::invalid_argument for a null body.
+Expr field(std::shared_ptr<const ImplicitFunction> body, const Expr& X, const Expr& Y,
+           const Expr& Z);
+
 // The partial derivative dF/d(axis), axis 0, 1, 2 for x, y, z, as an expression: forward-mode
 // differentiation of the expression graph (the dual-number rules applied to the nodes), exact
 // and itself differentiable. At singular points (R0 corners, sqrt at 0, atan2 at the origin) the
