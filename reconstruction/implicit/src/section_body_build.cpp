@@ -1,0 +1,384 @@
+// Sections -> section-body model (reconstruction/implicit/section_body_build.h).
+#include "interlin/reconstruction/implicit/section_body_build.h"
+
+#include "interlin/interflatation/operators/cubic_grid.h"
+#include "interlin/reconstruction/implicit/body_projection.h"
+#include "interlin/reconstruction/meshing/parallel_for.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <stdexcept>
+
+namespace interlin {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+using Eigen::Vector3d;
+
+namespace {
+
+// The cap edges of one end: the ends of the end section's longest chord, moved to the nose tips
+// (profile_edges), as loft parameters, sorted.
+Eigen::Vector2d cap_edges(const LoftResult& L, size_t k) {
+  const auto [a, b] = profile_edges(L.sections[k].points);
+  const double ua = L.point_u[k](a), ub = L.point_u[k](b);
+  return {std::min(ua, ub), std::max(ua, ub)};
+}
+
+// The grid cells and their geometry.
+struct Cells {
+  NodeGrid grid;
+  Eigen::Array3i m; // cells per axis
+  long count() const { return static_cast<long>(m(0)) * m(1) * m(2); }
+  long node(int i, int j, int k) const {
+    return i + grid.n(0) * (j + static_cast<long>(grid.n(1)) * k);
+  }
+  Vector3d corner(long cell) const {
+    const long i = cell % m(0), j = (cell / m(0)) % m(1),
+               k = cell / (static_cast<long>(m(0)) * m(1));
+    return grid.origin + grid.h * Vector3d(double(i), double(j), double(k));
+  }
+  long cell_of(const Vector3d& p) const {
+    long c[3];
+    for (int a = 0; a < 3; ++a) {
+      const double t = std::floor((p(a) - grid.origin(a)) / grid.h);
+      if (!(t >= 0 && t < m(a)))
+        return -1;
+      c[a] = static_cast<long>(t);
+    }
+    return c[0] + m(0) * (c[1] + static_cast<long>(m(1)) * c[2]);
+  }
+};
+
+// Random points in the given cells (`per_cell` each, deterministic per cell and round).
+MatrixXd random_points(const Cells& C, const std::vector<long>& cells, int per_cell, int round) {
+  MatrixXd P(static_cast<Index>(cells.size()) * per_cell, 3);
+  for (size_t c = 0; c < cells.size(); ++c) {
+    std::mt19937_64 rng(static_cast<std::uint64_t>(cells[c]) * 7919u +
+                        static_cast<unsigned>(round));
+    std::uniform_real_distribution<double> U(0, 1);
+    const Vector3d o = C.corner(cells[c]);
+    for (int r = 0; r < per_cell; ++r)
+      P.row(static_cast<Index>(c) * per_cell + r) =
+          (o + C.grid.h * Vector3d(U(rng), U(rng), U(rng))).transpose();
+  }
+  return P;
+}
+
+// Adds the exact foot of p as a start of its cell unless the cell's starts already find it.
+// Returns true when a start was added.
+bool complete_starts(const BodyPatches& B, std::vector<PatchSeed>& seeds, const Vector3d& p,
+                     const BodyDistance& exact, double tolerance) {
+  const BodyDistance near = body_distance(B, p, seeds.data(), static_cast<int>(seeds.size()));
+  if (near.found && std::abs(near.distance - exact.distance) <= tolerance)
+    return false;
+  seeds.push_back(exact.seed);
+  return true;
+}
+
+// Boundary samples that every start set must serve: a grid on the side (nu x nv) and on the
+// caps' interiors, refined along rows and columns wherever neighbouring samples' normals turn
+// by more than 30 degrees (sharp trailing edges, the turn of a fold), by halving down to 1e-7 of
+// the parameter range; plus 16 extra rows inside each end's fold region.
+std::vector<PatchSeed> boundary_samples(const BodyPatches& B, int nu, int nv) {
+  const PiecewiseSurface& S = B.patches[0];
+  const Eigen::Vector4d dom = domain(S);
+  const auto normal = [&](double u, double v) {
+    const SurfaceJet J = evaluate_jet(S, u, v);
+    return Vector3d(J.Su.cross(J.Sv).normalized());
+  };
+  std::vector<PatchSeed> out;
+  const std::function<void(double, double, double, double, int)> refine =
+      [&](double u0, double v0, double u1, double v1, int depth) {
+        if (depth > 23 || normal(u0, v0).dot(normal(u1, v1)) > std::cos(M_PI / 6))
+          return;
+        const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+        out.push_back({0, um, vm});
+        refine(u0, v0, um, vm, depth + 1);
+        refine(um, vm, u1, v1, depth + 1);
+      };
+  std::vector<double> rows;
+  for (int j = 0; j < nv; ++j)
+    rows.push_back(dom(2) + (dom(3) - dom(2)) * j / (nv - 1));
+  for (int e = 0; e < 2; ++e)
+    if (B.fold_zone[static_cast<size_t>(e)] > 0) {
+      const double ve = e == 0 ? dom(2) : dom(3), fv = B.fold_v[static_cast<size_t>(e)];
+      for (int j = 1; j < 16; ++j)
+        rows.push_back(ve + (fv - ve) * j / 16);
+    }
+  for (double v : rows)
+    for (int i = 0; i < nu; ++i) {
+      const double u0 = double(i) / nu, u1 = double(i + 1) / nu;
+      out.push_back({0, u0, v});
+      refine(u0, v, u1, v, 0);
+    }
+  std::sort(rows.begin(), rows.end());
+  for (int i = 0; i < nu; ++i)
+    for (size_t j = 0; j + 1 < rows.size(); ++j)
+      refine(double(i) / nu, rows[j], double(i) / nu, rows[j + 1], 0);
+  // Caps: an s-grid, denser towards the edge points s = 0, 1 where the rulings shrink (and
+  // may cross where the loop turns round a sharp edge), on t-rows denser towards the loop.
+  std::vector<double> cs, ct;
+  for (int i = 1; i < nu; ++i)
+    cs.push_back(double(i) / nu);
+  for (int k = 4; k <= 10; ++k)
+    for (double e : {std::pow(10.0, -k), 3 * std::pow(10.0, -k)})
+      cs.insert(cs.end(), {e, 1 - e});
+  for (int j = 1; j < 16; ++j)
+    ct.push_back(j / 16.0);
+  for (int k = 2; k <= 8; ++k)
+    ct.insert(ct.end(), {std::pow(10.0, -k), 1 - std::pow(10.0, -k)});
+  for (int k = 1; k < 3; ++k)
+    for (double t : ct)
+      for (double sv : cs)
+        out.push_back({k, sv, t});
+  return out;
+}
+
+} // namespace
+
+SectionBodyBuild build_section_body(const std::vector<Section>& sections,
+                                    const SectionBodyOptions& o) {
+  if (o.resolution < 8 || o.resolution > 1024)
+    throw std::invalid_argument("section body: resolution must be from 8 to 1024");
+  if (!(o.margin > 0) || !(o.band_inner > 0 && o.band_outer > o.band_inner))
+    throw std::invalid_argument("section body: need margin > 0 and 0 < band_inner < band_outer");
+  if (o.checks_per_cell < 0)
+    throw std::invalid_argument("section body: checks_per_cell must be >= 0");
+  const auto progress = [&](const std::string& s) {
+    if (o.progress)
+      o.progress(s);
+  };
+  const int threads = detail::resolve_threads(o.threads);
+  SectionBodyBuild out;
+  SectionBodyReport& R = out.report;
+  SectionBodyModel& M = out.model;
+
+  progress("lofting " + std::to_string(sections.size()) + " sections");
+  R.loft = loft_sections(sections, o.loft);
+  const LoftResult& L = R.loft;
+  M.side = L.surface;
+  M.edge_u = {cap_edges(L, 0), cap_edges(L, L.sections.size() - 1)};
+  const BodyPatches B = body_patches(M.side, M.edge_u);
+  const BodyProjection proj(B);
+
+  // Box and grid.
+  const std::vector<PatchSeed> samples = boundary_samples(B, 1024, 128);
+  Eigen::AlignedBox3d bbox;
+  for (const PatchSeed& at : samples)
+    bbox.extend(evaluate(B, at));
+  R.bbox_diagonal = bbox.diagonal().norm();
+  const double diag = R.bbox_diagonal;
+  M.box = Eigen::AlignedBox3d(bbox.min().array() - o.margin * diag,
+                              bbox.max().array() + o.margin * diag);
+  Cells C;
+  C.grid.h = M.box.sizes().maxCoeff() / o.resolution;
+  C.grid.origin = M.box.min().array() - 2 * C.grid.h;
+  for (int a = 0; a < 3; ++a)
+    C.grid.n(a) = static_cast<int>(std::ceil(M.box.sizes()(a) / C.grid.h)) + 5;
+  C.m = C.grid.n - 1;
+  const double h = C.grid.h;
+  M.band_inner = o.band_inner * h;
+  M.band_outer = o.band_outer * h;
+  const double tolerance = 1e-9 * diag;
+
+  // Far field: the exact signed distance at the nodes.
+  const long nodes = static_cast<long>(C.grid.n(0)) * C.grid.n(1) * C.grid.n(2);
+  progress("exact signed distance at " + std::to_string(nodes) + " grid nodes");
+  MatrixXd N(nodes, 3);
+  for (int k = 0; k < C.grid.n(2); ++k)
+    for (int j = 0; j < C.grid.n(1); ++j)
+      for (int i = 0; i < C.grid.n(0); ++i)
+        N.row(C.node(i, j, k)) = (C.grid.origin + h * Vector3d(i, j, k)).transpose();
+  const std::vector<BodyDistance> node_d = proj.distances(N, threads);
+  C.grid.values.resize(static_cast<size_t>(nodes));
+  for (long i = 0; i < nodes; ++i)
+    C.grid.values[static_cast<size_t>(i)] = node_d[static_cast<size_t>(i)].distance;
+  M.grid = C.grid;
+
+  // Band cells: some point of the cell may be within band_outer of the boundary (|d| is
+  // 1-Lipschitz and every point of a cell lies within h sqrt(3) of each corner).
+  std::vector<long> band;
+  std::vector<long> slot(static_cast<size_t>(C.count()), -1);
+  for (long c = 0; c < C.count(); ++c) {
+    const long i = c % C.m(0), j = (c / C.m(0)) % C.m(1),
+               k = c / (static_cast<long>(C.m(0)) * C.m(1));
+    double lo = INFINITY;
+    for (int q = 0; q < 8; ++q)
+      lo = std::min(
+          lo, std::abs(node_d[static_cast<size_t>(C.node(int(i + (q & 1)), int(j + ((q >> 1) & 1)),
+                                                         int(k + (q >> 2))))]
+                           .distance));
+    if (lo < M.band_outer + h * std::sqrt(3.0)) {
+      slot[static_cast<size_t>(c)] = static_cast<long>(band.size());
+      band.push_back(c);
+    }
+  }
+  R.band_cells = static_cast<long>(band.size());
+
+  // Starts: the foot of the cell centre, completed by the corners and random check points whose
+  // exact foot the starts do not find.
+  const int per = 1 + o.checks_per_cell;
+  MatrixXd Q = random_points(C, band, per, 0);
+  for (size_t c = 0; c < band.size(); ++c)
+    Q.row(static_cast<Index>(c) * per) =
+        (C.corner(band[c]) + Vector3d::Constant(0.5 * h)).transpose();
+  progress("near-field starts for " + std::to_string(band.size()) + " band cells (" +
+           std::to_string(Q.rows()) + " exact feet)");
+  const std::vector<BodyDistance> q_d = proj.distances(Q, threads);
+  std::vector<std::vector<PatchSeed>> starts(band.size());
+  // Cells the boundary may cross get the centre's foot on every patch that comes within the
+  // cell's circumscribed sphere: a sliver of a cap or a side in a corner of the cell has no
+  // samples there, but its points lie near that foot.
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * h;
+  std::vector<size_t> crossed;
+  for (size_t c = 0; c < band.size(); ++c)
+    if (std::abs(q_d[c * static_cast<size_t>(per)].distance) <= half_diagonal)
+      crossed.push_back(c);
+  MatrixXd centres(static_cast<Index>(crossed.size()), 3);
+  for (size_t i = 0; i < crossed.size(); ++i)
+    centres.row(static_cast<Index>(i)) = Q.row(static_cast<Index>(crossed[i]) * per);
+  for (int patch = 0; patch < 3; ++patch) {
+    const std::vector<BodyDistance> f = proj.distances(centres, threads, patch);
+    for (size_t i = 0; i < crossed.size(); ++i)
+      if (f[i].found && std::abs(f[i].distance) <= half_diagonal)
+        starts[crossed[i]].push_back(f[i].seed);
+  }
+  std::vector<long> fails(band.size(), 0);
+  detail::parallel_for(static_cast<long>(band.size()), threads, [&](long c, int) {
+    std::vector<PatchSeed>& s = starts[static_cast<size_t>(c)];
+    if (s.empty())
+      s.push_back(q_d[static_cast<size_t>(c * per)].seed);
+    const long cell = band[static_cast<size_t>(c)];
+    const long i = cell % C.m(0), j = (cell / C.m(0)) % C.m(1),
+               k = cell / (static_cast<long>(C.m(0)) * C.m(1));
+    for (int q = 0; q < 8; ++q) {
+      const long n = C.node(int(i + (q & 1)), int(j + ((q >> 1) & 1)), int(k + (q >> 2)));
+      fails[static_cast<size_t>(c)] +=
+          complete_starts(B, s, N.row(n).transpose(), node_d[static_cast<size_t>(n)], tolerance);
+    }
+    for (int r = 1; r < per; ++r)
+      fails[static_cast<size_t>(c)] += complete_starts(
+          B, s, Q.row(c * per + r).transpose(), q_d[static_cast<size_t>(c * per + r)], tolerance);
+  });
+  R.check_points = static_cast<long>(band.size()) * (8 + o.checks_per_cell);
+  for (long f : fails)
+    R.check_failures += f;
+
+  // The boundary itself: input section points and dense samples must have omega = 0.
+  std::vector<std::pair<Vector3d, PatchSeed>> surface;
+  for (size_t k = 0; k < L.sections.size(); ++k)
+    for (Index i = 0; i < L.sections[k].points.rows(); ++i)
+      surface.push_back({L.sections[k].points.row(i).transpose(),
+                         PatchSeed{0, L.point_u[k](i), L.section_v(static_cast<Index>(k))}});
+  for (const PatchSeed& at : samples)
+    surface.push_back({evaluate(B, at), at});
+  R.surface_points = static_cast<long>(surface.size());
+  // Every sheet of the boundary that passes through a cell gets a start there (two sheets meet
+  // at a sharp trailing edge: a start on one side does not reach the other side's points);
+  // sheets by patch and by outward normals within 30 degrees.
+  const auto normal_at = [&](const PatchSeed& at) {
+    const SurfaceJet J = evaluate_jet(B.patches[static_cast<size_t>(at.patch)], at.u, at.v);
+    const Vector3d n = J.Su.cross(J.Sv);
+    return n.norm() > 0 ? Vector3d(B.orientation[static_cast<size_t>(at.patch)] * n.normalized())
+                        : Vector3d::Zero();
+  };
+  std::vector<std::vector<Vector3d>> sheet(band.size());
+  for (size_t c = 0; c < band.size(); ++c)
+    for (const PatchSeed& at : starts[c])
+      sheet[c].push_back(normal_at(at));
+  for (const auto& [p, at] : surface) {
+    const long c = C.cell_of(p);
+    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
+      throw std::runtime_error("section body: a boundary point lies outside the band cells");
+    const size_t k = static_cast<size_t>(slot[static_cast<size_t>(c)]);
+    const Vector3d n = normal_at(at);
+    bool covered = false;
+    for (size_t j = 0; j < starts[k].size() && !covered; ++j)
+      covered = starts[k][j].patch == at.patch && sheet[k][j].dot(n) > std::cos(M_PI / 6);
+    if (!covered) {
+      starts[k].push_back(at);
+      sheet[k].push_back(n);
+    }
+  }
+  for (const auto& [p, at] : surface) {
+    const long c = C.cell_of(p);
+    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
+      throw std::runtime_error("section body: a boundary point lies outside the band cells");
+    std::vector<PatchSeed>& s = starts[static_cast<size_t>(slot[static_cast<size_t>(c)])];
+    const BodyDistance near = body_distance(B, p, s.data(), static_cast<int>(s.size()));
+    if (!near.found || std::abs(near.distance) > 1e-13 * diag)
+      s.push_back(at);
+  }
+
+  // Random boundary points: each one its start finds not gets its own (two rounds, the second
+  // one counted: rare points between the samples, in folds or at sharp edges).
+  for (int round = 0; round < 2; ++round) {
+    std::mt19937_64 rng(1234 + static_cast<unsigned>(round));
+    std::uniform_real_distribution<double> U(0, 1);
+    const Eigen::Vector4d dom = domain(B.patches[0]);
+    long misses = 0;
+    const long n = 100000;
+    for (long i = 0; i < n; ++i) {
+      const int patch = i % 5 == 0 ? 1 : i % 5 == 1 ? 2 : 0;
+      PatchSeed at{patch, U(rng), U(rng)};
+      if (patch == 0)
+        at.v = dom(2) + (dom(3) - dom(2)) * at.v;
+      const Vector3d p = evaluate(B, at);
+      const long c = C.cell_of(p);
+      if (c < 0 || slot[static_cast<size_t>(c)] < 0)
+        throw std::runtime_error("section body: a boundary point lies outside the band cells");
+      std::vector<PatchSeed>& st = starts[static_cast<size_t>(slot[static_cast<size_t>(c)])];
+      const BodyDistance near = body_distance(B, p, st.data(), static_cast<int>(st.size()));
+      if (!near.found || std::abs(near.distance) > 1e-13 * diag) {
+        st.push_back(at);
+        ++misses;
+      }
+    }
+    R.boundary_misses = misses;
+  }
+
+  // Validation on independent points (failures get their own start as well).
+  if (o.checks_per_cell > 0) {
+    const MatrixXd V = random_points(C, band, o.checks_per_cell, 1);
+    progress("validating the near field at " + std::to_string(V.rows()) + " points");
+    const std::vector<BodyDistance> v_d = proj.distances(V, threads);
+    R.validation_points = V.rows();
+    for (Index r = 0; r < V.rows(); ++r) {
+      std::vector<PatchSeed>& s = starts[static_cast<size_t>(r / o.checks_per_cell)];
+      R.validation_failures +=
+          complete_starts(B, s, V.row(r).transpose(), v_d[static_cast<size_t>(r)], tolerance);
+    }
+  }
+
+  // The model.
+  M.band_start.push_back(0);
+  for (size_t c = 0; c < band.size(); ++c) {
+    M.band_cells.push_back(band[c]);
+    M.seeds.insert(M.seeds.end(), starts[c].begin(), starts[c].end());
+    M.band_start.push_back(static_cast<std::int64_t>(M.seeds.size()));
+  }
+  R.seeds = static_cast<long>(M.seeds.size());
+
+  // Measured: the far field's error beyond the inner band, omega on the boundary.
+  const ImplicitFunction f = section_body_function(M);
+  const CubicGrid far = cubic_grid(M.grid.values, M.grid.origin, M.grid.h, M.grid.n);
+  for (Index r = 0; r < Q.rows(); ++r)
+    if (std::abs(q_d[static_cast<size_t>(r)].distance) >= M.band_inner)
+      R.max_far_error = std::max(R.max_far_error, std::abs(evaluate(far, Q.row(r).transpose()) -
+                                                           q_d[static_cast<size_t>(r)].distance));
+  Points3 S(static_cast<Index>(surface.size()), 3);
+  for (size_t i = 0; i < surface.size(); ++i)
+    S.row(static_cast<Index>(i)) = surface[i].first.transpose();
+  Eigen::VectorXd w(S.rows());
+  f.value(S, w);
+  R.max_surface_omega = S.rows() > 0 ? w.cwiseAbs().maxCoeff() : 0.0;
+  if (!(R.max_surface_omega <= 1e-12 * diag))
+    throw std::runtime_error("section body: |omega| = " + std::to_string(R.max_surface_omega) +
+                             " on the boundary exceeds 1e-12 x the diagonal");
+  return out;
+}
+
+} // namespace interlin
