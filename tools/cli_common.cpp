@@ -1,6 +1,7 @@
 #include "cli_common.h"
 
 #include "interlin/interflatation/limits.h"
+#include "interlin/interflatation/load_implicit.h"
 #include "interlin/reconstruction/io/atomic_file.h"
 
 #include <cctype>
@@ -176,6 +177,16 @@ ModelOptions model_options(const ParsedArgs& args, SettingLabel label) {
     mo.parameters[name] = v;
   }
   return mo;
+}
+
+ModelOptions model_file_options(const ParsedArgs& args, const std::string& path,
+                                SettingLabel label) {
+  const std::string ext = lower_extension(path);
+  if (!is_implicit_model(path))
+    throw UsageError("model '" + path + "': unknown kind '" + ext + "' (expected .rf or .ifl)");
+  if (ext != ".rf" && (args.has("set") || args.has("var")))
+    throw UsageError("--set and --var apply to R-function models (.rf) only");
+  return model_options(args, label);
 }
 
 } // namespace interlin::cli

@@ -74,4 +74,10 @@ enum class SettingLabel { setting, name };
 // a name given twice.
 ModelOptions model_options(const ParsedArgs& args, SettingLabel label);
 
+// The model options of `args` for the model file `path` (.rf or .ifl, read by load_implicit):
+// --set/--var apply to .rf models only. UsageError for those on another kind and for an
+// extension that is neither (checked before any work).
+ModelOptions model_file_options(const ParsedArgs& args, const std::string& path,
+                                SettingLabel label);
+
 } // namespace interlin::cli

@@ -1,8 +1,9 @@
-// interlin eval: an R-function model (.rf) evaluated at the points of a CSV file.
+// interlin eval: an implicit model (.rf or .ifl) evaluated at the points of a CSV file.
 #include "cli_common.h"
 #include "commands.h"
 
-#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/interflatation/load_implicit.h"
+
 #include "interlin/reconstruction/io/atomic_file.h"
 #include "interlin/reconstruction/io/points_csv.h"
 
@@ -12,12 +13,13 @@
 namespace interlin::cli {
 
 const char* const kEvalHelp =
-    R"(interlin eval - evaluate an R-function model at points
+    R"(interlin eval - evaluate an implicit model at points
 
-Usage: interlin eval MODEL.rf POINTS.csv [options]
+Usage: interlin eval MODEL POINTS.csv [options]
 
-MODEL.rf    a model file (docs/formats.md, "R-function model files"); F > 0 inside,
-            F = 0 on the surface, F < 0 outside
+MODEL       an R-function model MODEL.rf (docs/formats.md, "R-function model files") or an
+            implicit model file MODEL.ifl (`interlin implicit`; "Implicit model files");
+            F > 0 inside, F = 0 on the surface, F < 0 outside
 POINTS.csv  a CSV file with a header naming the columns x, y, z (any order, case-insensitive,
             other columns ignored), one point per row; '#' comment lines and blank lines are
             skipped
@@ -26,10 +28,10 @@ Output: CSV with the header x,y,z,F (x,y,z,F,Fx,Fy,Fz with --gradient), one row 
 point in input order, numbers with 17 significant digits; on stdout, or in the file of -o.
 
 Options:
-  --gradient             also print the gradient of F (exact, forward-mode dual numbers)
-  --set NAME=VALUE       override a 'param NAME = ...;' of the model (repeatable)
-  --var NAME             evaluate the variable NAME instead of res
-  --max-model-size N     work the model may expand to: expression nodes, function calls,
+  --gradient             also print the gradient of F (.rf: exact, forward-mode dual numbers)
+  --set NAME=VALUE       .rf: override a 'param NAME = ...;' of the model (repeatable)
+  --var NAME             .rf: evaluate the variable NAME instead of res
+  --max-model-size N     .rf: work the model may expand to: expression nodes, function calls,
                          Bezier samples (default 5000000)
   -o, --output FILE      write the CSV to FILE (written whole or not at all)
   -q, --quiet            no progress lines on stderr
@@ -39,6 +41,7 @@ Examples:
   interlin eval data/models/impeller.rf points.csv
   interlin eval data/models/uav.rf points.csv --gradient -o values.csv
   interlin eval data/models/car.rf points.csv --var fig5 --set xs=7
+  interlin eval blade.ifl points.csv --gradient
 )";
 
 namespace {
@@ -66,16 +69,16 @@ void write_values(std::ostream& out, const Points3& P, const Eigen::VectorXd& F,
 // The body of `interlin eval` (run_command handles help and exit statuses).
 void eval_main(const ParsedArgs& a, std::vector<std::string>&) {
   if (a.positional.size() != 2)
-    throw UsageError("expected MODEL.rf POINTS.csv, got " + std::to_string(a.positional.size()) +
+    throw UsageError("expected MODEL POINTS.csv, got " + std::to_string(a.positional.size()) +
                      " argument(s) (see --help)");
-  const ModelOptions mo = model_options(a, SettingLabel::setting);
   const std::string output = a.get("output");
   if (!output.empty())
     check_outputs(a.positional, {output});
+  const ModelOptions mo = model_file_options(a, a.positional[0], SettingLabel::setting);
   const bool with_gradient = a.has("gradient");
   const Progress progress{a.has("quiet")};
   progress("reading " + a.positional[0]);
-  const ImplicitFunction f = load_model(a.positional[0], mo);
+  const ImplicitFunction f = load_implicit(a.positional[0], mo);
   progress("reading " + a.positional[1]);
   const Points3 P = read_points_csv(a.positional[1]);
   progress("evaluating at " + std::to_string(P.rows()) + " points");

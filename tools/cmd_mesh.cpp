@@ -1,11 +1,12 @@
-// interlin mesh: R-function model (.rf) -> closed triangle mesh (marching cubes in parallel
+// interlin mesh: implicit model (.rf or .ifl) -> closed triangle mesh (marching cubes in parallel
 // sub-boxes, vertices projected onto F = 0), optional smoothing and edge flips, mesh files and a
 // preview.
 #include "cli_common.h"
 #include "cmd_mesh_volume.h"
 #include "commands.h"
 
-#include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/interflatation/load_implicit.h"
+
 #include "interlin/reconstruction/io/input_error.h"
 #include "interlin/reconstruction/io/mesh_io.h"
 #include "interlin/reconstruction/io/preview.h"
@@ -22,12 +23,13 @@
 namespace interlin::cli {
 
 const char* const kMeshHelp =
-    R"(interlin mesh - R-function model -> closed triangle mesh of the body F > 0
+    R"(interlin mesh - implicit model -> closed triangle mesh of the body F > 0
 
-Usage: interlin mesh MODEL.rf -o OUT [-o OUT ...] [options]
-       interlin mesh MODEL.rf -o OUT.msh --volume tet|hex [options]
+Usage: interlin mesh MODEL -o OUT [-o OUT ...] [options]
+       interlin mesh MODEL -o OUT.msh --volume tet|hex [options]
 
-MODEL.rf   a model file (docs/formats.md, "R-function model files"), e.g. data/models/*.rf
+MODEL      an R-function model MODEL.rf (docs/formats.md, "R-function model files"), e.g.
+           data/models/*.rf, or an implicit model file MODEL.ifl (`interlin implicit`)
 
 Outputs (-o, repeatable, format by extension):
   .stl .obj .ply .off   triangle mesh (binary STL/PLY), closed and outward oriented
@@ -51,8 +53,8 @@ Options:
   --smooth K             K sweeps of seed 003's smoothing functional (vertices slide over the
                          surface onto creases; costs about 3000 evaluations per vertex and sweep)
   --flip                 edge flips that raise the smallest angle (after smoothing)
-  --set NAME=VALUE       override a 'param NAME = ...;' of the model (repeatable)
-  --var NAME             mesh the variable NAME instead of res
+  --set NAME=VALUE       .rf: override a 'param NAME = ...;' of the model (repeatable)
+  --var NAME             .rf: mesh the variable NAME instead of res
   --view AZ,EL           preview camera azimuth and elevation in degrees (default 45,25)
   --mesh-precision double|single
                          coordinates in .ply and .obj files (default double: exact; .stl
@@ -70,6 +72,7 @@ Examples:
   interlin mesh data/models/uav.rf -o uav.ply -o uav.png --cell 0.02
   interlin mesh data/models/valve.rf -o valve.obj --resolution 96 --smooth 4 --flip
   interlin mesh data/models/car.rf -o car_fig5.stl --var fig5 --set xs=7
+  interlin mesh blade.ifl -o blade.stl --resolution 256
 
 Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element analysis):
   outputs .vtu (ParaView), .msh (Gmsh 4.1), .inp (Abaqus/CalculiX), plus .stl .obj .ply .off
@@ -146,7 +149,6 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   const bool flip = a.has("flip"), quiet = a.has("quiet");
   const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
   const MeshPrecision precision = mesh_precision(a);
-  const ModelOptions mo = model_options(a, SettingLabel::name);
   const std::vector<std::string> outputs = a.all("output");
   if (outputs.empty())
     throw UsageError("nothing to do: give -o FILE");
@@ -166,10 +168,11 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
       kinds[out] = output_kind(out);
   }
   check_outputs({input}, outputs);
+  const ModelOptions mo = model_file_options(a, input, SettingLabel::name);
 
   const Progress progress{quiet};
   progress("reading " + input);
-  const ImplicitFunction f = load_model(input, mo);
+  const ImplicitFunction f = load_implicit(input, mo);
   const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
   // Grid limits are usage errors (the options asked for them), checked before any work.
   if (const double n = grid_node_estimate(box, o); n > double(max_grid_nodes))

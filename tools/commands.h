@@ -16,4 +16,7 @@ extern const char* const kMeshHelp;
 int run_profile(int argc, const char* const* argv);
 extern const char* const kProfileHelp;
 
+int run_implicit(int argc, const char* const* argv);
+extern const char* const kImplicitHelp;
+
 } // namespace interlin::cli

@@ -17,10 +17,13 @@ Usage:
   interlin loft SECTIONS.csv --guides GUIDES.csv -o OUT [...]
       Sections plus spanwise guide lines (leading/trailing edge, ...) -> one Gordon
       B-spline surface through every section and every guide exactly.
-  interlin eval MODEL.rf POINTS.csv [--gradient] [-o OUT.csv]
-      R-function model (.rf) -> its value F (and gradient) at the points of a CSV file.
-  interlin mesh MODEL.rf -o OUT [-o OUT ...] [--resolution N | --cell H] [options]
-      R-function model (.rf) -> closed triangle mesh of the body (.stl .obj .ply .off .png).
+  interlin eval MODEL POINTS.csv [--gradient] [-o OUT.csv]
+      Implicit model (.rf or .ifl) -> its value F (and gradient) at the points of a CSV file.
+  interlin mesh MODEL -o OUT [-o OUT ...] [--resolution N | --cell H] [options]
+      Implicit model (.rf or .ifl) -> closed triangle mesh of the body (.stl .obj .ply .off .png).
+  interlin implicit SECTIONS.csv|MODEL.rf -o MODEL.ifl [options]
+      Sections -> implicit equation of the lofted body (0 exactly on the loft and its caps,
+      the signed distance near it); an R-function model -> its normalised equation.
   interlin profile PARAMS.json -o SECTIONS.csv [--joint g2|g3] [--curvature K.csv]
       13 cascade parameters (+ optional span law) -> turbine blade profile(s) as a section
       CSV that `interlin loft` accepts (seed 004, natural parametrization).
@@ -54,6 +57,8 @@ int main(int argc, char** argv) {
     return interlin::cli::run_eval(argc, argv);
   if (!std::strcmp(cmd, "mesh"))
     return interlin::cli::run_mesh(argc, argv);
+  if (!std::strcmp(cmd, "implicit"))
+    return interlin::cli::run_implicit(argc, argv);
   std::cerr << "interlin: unknown command '" << cmd << "' (see interlin --help)\n";
   return 2;
 }

@@ -77,8 +77,8 @@ TEST_CASE("CLI eval: --set and --var", "[cli][eval]") {
   TempDir d("eval");
   const Run h = run("eval --help");
   CHECK(h.status == 0);
-  CHECK_THAT(h.out, Catch::Contains("Usage: interlin eval MODEL.rf POINTS.csv"));
-  CHECK_THAT(run("--help").out, Catch::Contains("interlin eval MODEL.rf POINTS.csv"));
+  CHECK_THAT(h.out, Catch::Contains("Usage: interlin eval MODEL POINTS.csv"));
+  CHECK_THAT(run("--help").out, Catch::Contains("interlin eval MODEL POINTS.csv"));
   write_file(d / "p.csv", "x,y,z\n0,-14.5,2\n");
   Run r = run("eval " + model("car.rf") + " " + d / "p.csv --var fig5 -q");
   REQUIRE(r.status == 0);
@@ -92,7 +92,7 @@ TEST_CASE("CLI eval: --set and --var", "[cli][eval]") {
                "does not assign the output variable 'nothing'");
   expect_error(run("eval " + model("car.rf") + " " + d / "p.csv --set y2 -q"), 2,
                "interlin eval: --set y2: expected NAME=VALUE");
-  expect_error(run("eval " + model("car.rf") + " -q"), 2, "expected MODEL.rf POINTS.csv");
+  expect_error(run("eval " + model("car.rf") + " -q"), 2, "expected MODEL POINTS.csv");
 }
 
 TEST_CASE("CLI eval: bad points and bad models give one error line", "[cli][eval]") {

@@ -28,7 +28,7 @@ const char* const kBall = "% unit ball\nbox(-1.2, -1.2, -1.2, 1.2, 1.2, 1.2);\n"
 TEST_CASE("CLI mesh: help and usage errors", "[cli][mesh]") {
   TempDir d("climesh");
   Run r = run("--help");
-  CHECK_THAT(r.out, Catch::Contains("interlin mesh MODEL.rf"));
+  CHECK_THAT(r.out, Catch::Contains("interlin mesh MODEL -o"));
   r = run("mesh --help");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("--resolution N") && Catch::Contains("--subboxes"));
