@@ -112,7 +112,7 @@ knots optional periodic knot vector (periodic_knots).)");
       [](const MatrixXd& P, int degree, bool closed, int num_ctrl, double smoothing,
          double tolerance, double parameter_exponent) {
         return approximate_curve(
-            P, {degree, closed, num_ctrl, smoothing, tolerance, parameter_exponent});
+            P, {degree, closed, num_ctrl, smoothing, tolerance, parameter_exponent, {}});
       },
       py::arg("P"), py::arg("degree") = 3, py::arg("closed") = false, py::arg("num_ctrl") = 0,
       py::arg("smoothing") = 0.0, py::arg("tolerance") = 0.0, py::arg("parameter_exponent") = 1.0,

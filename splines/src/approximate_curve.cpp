@@ -116,7 +116,11 @@ Approximation approximate_curve(const MatrixXd& P, const ApproximationOptions& o
     throw std::invalid_argument(
         "curve approximation: num_ctrl must lie in [degree + 1, #points] = [" +
         std::to_string(p + 1) + ", " + std::to_string(N) + "]");
-  const VectorXd u = chord_parameters(P, o.closed, o.parameter_exponent);
+  if (o.parameters.size() != 0 && o.parameters.size() != N + (o.closed ? 1 : 0))
+    throw std::invalid_argument("curve approximation: " + std::to_string(o.parameters.size()) +
+                                " parameters for " + std::to_string(N) + " points");
+  const VectorXd u =
+      o.parameters.size() != 0 ? o.parameters : chord_parameters(P, o.closed, o.parameter_exponent);
   double L = 0;
   for (Index i = 0; i + 1 < N; ++i)
     L += (P.row(i + 1) - P.row(i)).norm();

@@ -18,6 +18,9 @@ struct ApproximationOptions {
   double smoothing = 0; // lambda >= 0 (needs degree >= 2 when > 0)
   double tolerance = 0; // > 0: double num_ctrl (up to #P) until the max deviation <= tolerance
   double parameter_exponent = 1.0; // 1 chord length, 0.5 centripetal
+  // Given parameters instead (#P increasing from 0, closed: #P + 1 with the closing one last;
+  // e.g. chord lengths of a smoothed copy of noisy points); empty: chord_parameters(P).
+  Eigen::VectorXd parameters;
 };
 
 struct Approximation {

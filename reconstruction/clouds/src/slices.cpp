@@ -1,0 +1,217 @@
+#include "interlin/reconstruction/clouds/slices.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace interlin {
+
+using Eigen::Index;
+using Eigen::Vector3d;
+
+namespace {
+
+// A slice boundary is a gap in the sorted stations at least this many times larger than every
+// gap inside the slices (noise-free slices have ratios of 10^3 and more, slices 8 sigma apart
+// still about 5; the largest gaps of an
+// unstructured cloud's stations differ by small factors).
+constexpr double kSliceGapRatio = 4;
+constexpr Index kMinSlicePoints = 8; // fewer cannot be fitted by a closed cubic with smoothing
+// order_profile: the ends of the chord (this fraction of it) are ordered by angle (noses).
+constexpr double kNoseZone = 0.1;
+
+struct Split {
+  double score = 0; // slice spacing / spread (larger: thinner slices; 0: no split)
+  SliceFamily family;
+};
+
+// Splits the stations s into slices at the gaps that stand out (see detect_slices).
+Split split_stations(const Eigen::MatrixX3d& P, const SliceFamily& candidate) {
+  const Index n = P.rows();
+  Split out;
+  if (n < 3 * kMinSlicePoints)
+    return out;
+  std::vector<std::pair<double, Index>> s(static_cast<size_t>(n));
+  for (Index i = 0; i < n; ++i)
+    s[size_t(i)] = {candidate.station(P.row(i).transpose()), i};
+  std::sort(s.begin(), s.end());
+  std::vector<double> gaps(size_t(n - 1));
+  for (size_t j = 0; j + 1 < s.size(); ++j)
+    gaps[j] = s[j + 1].first - s[j].first;
+  std::vector<double> desc = gaps;
+  std::sort(desc.begin(), desc.end(), std::greater<>());
+  // m largest gaps are boundaries: m + 1 slices, at least 3, each of kMinSlicePoints on average
+  size_t best_m = 0;
+  double best = 0;
+  // gaps below round-off of the stations (exact slices) count as that round-off
+  const double eps = 1e-12 * (s.back().first - s.front().first) + 1e-300;
+  for (size_t m = 2; m < desc.size() && Index(m + 1) * kMinSlicePoints <= n; ++m) {
+    const double r = std::max(desc[m - 1], eps) / std::max(desc[m], eps);
+    if (r > best)
+      best = r, best_m = m;
+  }
+  if (best < kSliceGapRatio)
+    return out;
+  const double cut = desc[best_m - 1];
+  SliceFamily f = candidate;
+  std::vector<Index> current{s[0].second};
+  for (size_t j = 0; j < gaps.size(); ++j) {
+    if (gaps[j] >= cut) {
+      f.members.push_back(current);
+      current.clear();
+    }
+    current.push_back(s[j + 1].second);
+  }
+  f.members.push_back(current);
+  double sq = 0, worst_spread = 0;
+  for (const auto& m : f.members) {
+    if (Index(m.size()) < kMinSlicePoints)
+      return out;
+    double mean = 0;
+    for (Index i : m)
+      mean += f.station(P.row(i).transpose()) / double(m.size());
+    double v = 0;
+    Eigen::Vector3d lo = P.row(m[0]).transpose(), hi = lo;
+    for (Index i : m) {
+      v += std::pow(f.station(P.row(i).transpose()) - mean, 2);
+      lo = lo.cwiseMin(P.row(i).transpose());
+      hi = hi.cwiseMax(P.row(i).transpose());
+    }
+    const double spread = std::sqrt(v / double(m.size()));
+    if ((hi - lo).norm() < 10 * spread) // a block of points, not a profile
+      return out;
+    worst_spread = std::max(worst_spread, spread);
+    sq += v;
+    f.stations.push_back(mean);
+  }
+  double spacing = 1e300;
+  for (size_t k = 0; k + 1 < f.stations.size(); ++k)
+    spacing = std::min(spacing, f.stations[k + 1] - f.stations[k]);
+  if (worst_spread > 0.25 * spacing)
+    return out;
+  f.spread = std::sqrt(sq / double(n));
+  out.score = spacing / std::max(f.spread, 1e-15 * spacing);
+  out.family = std::move(f);
+  return out;
+}
+
+std::vector<Vector3d> candidate_axes(const Eigen::MatrixX3d& P, bool principal) {
+  std::vector<Vector3d> axes{Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
+  if (principal) {
+    const Eigen::MatrixX3d C = P.rowwise() - P.colwise().mean();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C.transpose() * C);
+    for (int k = 0; k < 3; ++k)
+      axes.push_back(es.eigenvectors().col(k).normalized());
+  }
+  return axes;
+}
+
+// The normal n minimising sum_k sum_{i in slice k} (n . (p_i - mean_k))^2: the eigenvector of the
+// pooled within-slice scatter with the smallest eigenvalue.
+SliceFamily refined_normal(const Eigen::MatrixX3d& P, const SliceFamily& f) {
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  for (const auto& m : f.members) {
+    const Eigen::MatrixX3d Q = P(m, Eigen::all);
+    const Eigen::MatrixX3d C = Q.rowwise() - Q.colwise().mean();
+    S += C.transpose() * C;
+  }
+  SliceFamily r;
+  r.kind = f.kind;
+  r.axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvectors().col(0).normalized();
+  if (r.axis.dot(f.axis) < 0)
+    r.axis = -r.axis;
+  return r;
+}
+
+} // namespace
+
+double SliceFamily::station(const Vector3d& p) const {
+  if (kind == SliceKind::radial)
+    return (p - axis.dot(p) * axis).norm();
+  return axis.dot(p);
+}
+
+SliceFamily detect_slices(const Eigen::MatrixX3d& P, SliceKind kind) {
+  Split best;
+  for (SliceKind k : {SliceKind::planar, SliceKind::radial}) {
+    if (kind != SliceKind::automatic && kind != k)
+      continue;
+    for (const Vector3d& a : candidate_axes(P, k == SliceKind::planar)) {
+      SliceFamily c;
+      c.kind = k;
+      c.axis = a;
+      Split s = split_stations(P, c);
+      if (s.score > best.score)
+        best = std::move(s);
+    }
+  }
+  if (best.family.kind == SliceKind::planar) // the common normal that fits the slices best
+    best = split_stations(P, refined_normal(P, best.family));
+  return best.family; // kind none when nothing passed
+}
+
+std::vector<Index> order_profile(const Eigen::MatrixX2d& P) {
+  const Index n = P.rows();
+  const Eigen::RowVector2d c = P.colwise().mean();
+  Index a = 0, b = 0;
+  (P.rowwise() - c).rowwise().squaredNorm().maxCoeff(&a);
+  (P.rowwise() - P.row(a)).rowwise().squaredNorm().maxCoeff(&b);
+  const Eigen::RowVector2d t = (P.row(b) - P.row(a)).normalized();
+  const double L = (P.row(b) - P.row(a)).norm();
+  Eigen::VectorXd s(n), w(n);
+  for (Index i = 0; i < n; ++i) {
+    const Eigen::RowVector2d d = P.row(i) - P.row(a);
+    s(i) = std::clamp(d.dot(t) / L, 0.0, 1.0);
+    w(i) = t(0) * d(1) - t(1) * d(0);
+  }
+  // mean line: midpoint of the extreme offsets per bin (about 16 points per bin, 4 to 64 bins)
+  const int bins = int(std::clamp<Index>(n / 16, 4, 64));
+  std::vector<double> lo(size_t(bins), 1e300), hi(size_t(bins), -1e300);
+  auto bin = [&](double x) { return std::min(bins - 1, int(x * bins)); };
+  for (Index i = 0; i < n; ++i) {
+    lo[size_t(bin(s(i)))] = std::min(lo[size_t(bin(s(i)))], w(i));
+    hi[size_t(bin(s(i)))] = std::max(hi[size_t(bin(s(i)))], w(i));
+  }
+  std::vector<double> xs, mid;
+  for (int k = 0; k < bins; ++k)
+    if (lo[size_t(k)] <= hi[size_t(k)]) {
+      xs.push_back((k + 0.5) / bins);
+      mid.push_back(0.5 * (lo[size_t(k)] + hi[size_t(k)]));
+    }
+  auto mean_line = [&](double x) {
+    const size_t j = size_t(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin());
+    if (j == 0)
+      return mid.front();
+    if (j == xs.size())
+      return mid.back();
+    const double f = (x - xs[j - 1]) / (xs[j] - xs[j - 1]);
+    return (1 - f) * mid[j - 1] + f * mid[j];
+  };
+  // Middle: each side by chord position. Within kNoseZone of either end: by the angle about the
+  // mean line's point at the zone's inner edge (a nose is star-shaped from there, where the sides
+  // are no longer graphs over the chord at the scale of the noise).
+  std::vector<std::pair<double, Index>> lead, upper, trail, lower;
+  const Eigen::Vector2d ca(kNoseZone * L, mean_line(kNoseZone)),
+      cb((1 - kNoseZone) * L, mean_line(1 - kNoseZone));
+  for (Index i = 0; i < n; ++i) {
+    const Eigen::Vector2d q(s(i) * L, w(i));
+    if (s(i) < kNoseZone) // from the lower side round to the upper one
+      lead.push_back({std::atan2(q(1) - ca(1), ca(0) - q(0)), i});
+    else if (s(i) > 1 - kNoseZone) // from the upper side round to the lower one
+      trail.push_back({-std::atan2(q(1) - cb(1), q(0) - cb(0)), i});
+    else if (w(i) >= mean_line(s(i)))
+      upper.push_back({s(i), i});
+    else
+      lower.push_back({-s(i), i});
+  }
+  std::vector<Index> order;
+  for (auto* part : {&lead, &upper, &trail, &lower}) {
+    std::sort(part->begin(), part->end());
+    for (const auto& [key, i] : *part)
+      order.push_back(i);
+  }
+  return order;
+}
+
+} // namespace interlin
