@@ -1,0 +1,406 @@
+// Point cloud -> surface: interlin's implicit (meshed by implicit_mesh) against PCL's and
+// Open3D's screened Poisson on the same clouds and normals, in one run (docs/benchmarks.md,
+// "Point clouds"). Each method runs in a fresh worker process (this program re-executed with
+// --worker: a forked child would inherit the parent's OpenMP state and deadlock in PCL's and
+// Open3D's OpenMP loops), so that its peak memory is its own: VmHWM after the method minus
+// VmRSS before it. Metrics: two-sided Chamfer and Hausdorff
+// distance between the reconstructed mesh and the true surface (100,000 area-uniform samples on
+// each, exact point-to-triangle distances), divided by the truth's bounding-box diagonal; wall
+// time of the reconstruction (fit + mesh; Poisson's own call, which includes its mesh).
+//
+// Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R] [--depths D,D]
+//                     [--threads T]
+
+#include "cloud_cases.h"
+#include "poisson_baselines.h"
+#include "surface_distance.h"
+
+#include "interlin/reconstruction/clouds/cloud_implicit.h"
+#include "interlin/reconstruction/clouds/fit_sliced_scan.h"
+#include "interlin/reconstruction/meshing/implicit_mesh.h"
+#include "interlin/reconstruction/meshing/surface_mesh.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace interlin;
+using namespace interlin::bench;
+using Eigen::Index;
+
+namespace {
+
+constexpr int kSamples = 100000; // area-uniform samples per surface for the distances
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct Method {
+  enum Kind { interlin, pcl, open3d, sectioned } kind;
+  int depth = 8;      // Poisson octree depth
+  int resolution = 0; // interlin: grid cells along the box's longest side
+  std::string label() const {
+    if (kind == interlin)
+      return "interlin (resolution " + std::to_string(resolution) + ")";
+    if (kind == sectioned)
+      return "interlin sectioned (slices -> loft)";
+    return std::string(kind == pcl ? "PCL Poisson" : "Open3D Poisson") + " (depth " +
+           std::to_string(depth) + ")";
+  }
+};
+
+// What a child reports (plain data through a pipe).
+struct Result {
+  double chamfer = kNaN, hausdorff = kNaN;        // mesh vs truth, / diagonal
+  double zs_chamfer = kNaN, zs_hausdorff = kNaN;  // interlin's zero set vs truth, / diagonal
+  double holdout_mean = kNaN, holdout_max = kNaN; // bunny: held-out points to the surface
+  double rms_cm = kNaN, max_cm = kNaN; // mesh -> truth distances (cm), for the 1.5 sigma target
+  double section_gap = kNaN;           // sectioned: fitted sections -> loft
+  double seconds = kNaN, peak_mb = kNaN;
+  long vertices = 0, leaves = 0;
+  double noise = kNaN;
+  char error[240] = {0};
+};
+
+long status_kb(const char* key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0)
+      return std::stol(line.substr(std::strlen(key)));
+  return 0;
+}
+
+struct Reconstruction {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  ImplicitFunction implicit; // interlin only
+  CloudFitInfo info;
+  double section_gap = kNaN; // sectioned only
+};
+
+// Kept apart from the point cloud: the slices' family and noise come from the points alone.
+void reconstruct_sectioned(const PointCloud& c, Reconstruction& r) {
+  const SliceFamily family = detect_slices(c.points);
+  if (family.kind == SliceKind::none)
+    throw std::runtime_error("no slices detected");
+  const SlicedFit fit = fit_sliced_scan(c.points, family);
+  SurfaceMeshOptions so;
+  so.nu = 1200;
+  so.nv = 200;
+  for (double v : fit.loft.section_v)
+    so.required_v.push_back(v);
+  surface_mesh(to_piecewise(fit.loft.surface), so, r.V, r.F);
+  r.section_gap = fit.section_gap;
+  r.info.noise = fit.noise;
+}
+
+Reconstruction reconstruct(const Method& m, const PointCloud& c, int threads) {
+  Reconstruction r;
+  if (m.kind == Method::interlin) {
+    CloudFitOptions o;
+    o.threads = threads;
+    auto model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, o, &r.info));
+    r.implicit = cloud_implicit_function(model);
+    ImplicitMeshOptions mo;
+    mo.resolution = m.resolution;
+    mo.threads = threads;
+    implicit_mesh(r.implicit, mo, r.V, r.F);
+  } else if (m.kind == Method::sectioned) {
+    reconstruct_sectioned(c, r);
+  } else if (m.kind == Method::pcl) {
+    pcl_poisson(c.points, c.normals, m.depth, threads, r.V, r.F);
+  } else {
+    open3d_poisson(c.points, c.normals, m.depth, threads, r.V, r.F);
+  }
+  return r;
+}
+
+// Samples restricted to the stations of a sectioned case.
+Eigen::MatrixX3d in_range(const CloudCase& c, const Eigen::MatrixX3d& P) {
+  if (!c.sectioned())
+    return P;
+  std::vector<Index> keep;
+  for (Index i = 0; i < P.rows(); ++i) {
+    const double s = c.station(P.row(i).transpose());
+    if (s >= c.station_lo && s <= c.station_hi)
+      keep.push_back(i);
+  }
+  return P(keep, Eigen::all);
+}
+
+// Moves points onto F = 0 along the gradient (three Newton steps).
+Eigen::MatrixX3d onto_zero_set(const ImplicitFunction& F, Eigen::MatrixX3d P) {
+  for (int it = 0; it < 3; ++it) {
+    Eigen::VectorXd v(P.rows());
+    Points3 G(P.rows(), 3);
+    F.gradient(P, v, G);
+    for (Index i = 0; i < P.rows(); ++i) {
+      const double g2 = G.row(i).squaredNorm();
+      if (g2 > 0)
+        P.row(i) -= v(i) / g2 * G.row(i);
+    }
+  }
+  return P;
+}
+
+void measure(const CloudCase& c, const MeshDistance& truth, const Eigen::MatrixX3d& truth_samples,
+             const Reconstruction& r, Result& out) {
+  if (r.F.rows() == 0) {
+    std::snprintf(out.error, sizeof out.error, "empty mesh");
+    return;
+  }
+  const double diag = c.truth.diagonal;
+  const MeshDistance recon(r.V, r.F);
+  const Eigen::MatrixX3d A = in_range(c, sample_mesh(r.V, r.F, kSamples, 99).points);
+  const Eigen::VectorXd dA = truth(A), dB = recon(truth_samples);
+  out.chamfer = 0.5 * (dA.mean() + dB.mean()) / diag;
+  out.rms_cm = std::sqrt(dA.squaredNorm() / double(dA.size()));
+  out.max_cm = dA.maxCoeff();
+  out.hausdorff = std::max(dA.maxCoeff(), dB.maxCoeff()) / diag;
+  if (r.implicit.value) {
+    const Eigen::VectorXd zA = truth(onto_zero_set(r.implicit, A));
+    Eigen::VectorXd v(truth_samples.rows());
+    Points3 G(truth_samples.rows(), 3);
+    r.implicit.gradient(truth_samples, v, G);
+    const Eigen::ArrayXd zB = v.array().abs() / G.rowwise().norm().array().max(1e-300);
+    out.zs_chamfer = 0.5 * (zA.mean() + zB.mean()) / diag;
+    out.zs_hausdorff = std::max(zA.maxCoeff(), zB.maxCoeff()) / diag;
+  }
+}
+
+// Ten-fold hold-out for a cloud without a truth: distance of each held-out point to the surface
+// fitted to the other nine tenths.
+void holdout(const Method& m, const CloudCase& c, int threads, Result& out) {
+  const Index n = c.cloud.points.rows();
+  std::vector<Index> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), Index{0});
+  std::shuffle(order.begin(), order.end(), std::mt19937(5));
+  const double diag =
+      (c.cloud.points.colwise().maxCoeff() - c.cloud.points.colwise().minCoeff()).norm();
+  double sum = 0, mx = 0;
+  for (int fold = 0; fold < 10; ++fold) {
+    std::vector<Index> train, test;
+    for (Index k = 0; k < n; ++k)
+      (k % 10 == fold ? test : train).push_back(order[static_cast<size_t>(k)]);
+    PointCloud t;
+    t.points = c.cloud.points(train, Eigen::all);
+    t.normals = c.cloud.normals(train, Eigen::all);
+    const Reconstruction r = reconstruct(m, t, threads);
+    const Eigen::VectorXd d = MeshDistance(r.V, r.F)(c.cloud.points(test, Eigen::all));
+    sum += d.sum();
+    mx = std::max(mx, d.maxCoeff());
+  }
+  out.holdout_mean = sum / double(n) / diag;
+  out.holdout_max = mx / diag;
+}
+
+// Reconstructs, then (after its memory is read) measures against the truth when the case has
+// one, else by hold-out.
+Result run_child(const Method& m, const CloudCase& c, int threads) {
+  Result out;
+  try {
+    const long before = status_kb("VmRSS:");
+    const auto t0 = std::chrono::steady_clock::now();
+    const Reconstruction r = reconstruct(m, c.cloud, threads);
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.peak_mb = double(status_kb("VmHWM:") - before) / 1024.0;
+    out.vertices = static_cast<long>(r.V.rows());
+    out.leaves = r.info.leaves;
+    out.noise = r.info.noise;
+    out.section_gap = r.section_gap;
+    if (c.truth.F.rows() > 0) {
+      const MeshDistance truth(c.truth.V, c.truth.F);
+      const Eigen::MatrixX3d samples =
+          in_range(c, sample_mesh(c.truth.V, c.truth.F, kSamples, 98).points);
+      measure(c, truth, samples, r, out);
+    } else {
+      holdout(m, c, threads, out);
+    }
+  } catch (const std::exception& e) {
+    std::snprintf(out.error, sizeof out.error, "%s", e.what());
+  }
+  return out;
+}
+
+// Runs one method in a fresh worker process (`self` --worker ...) and returns its report.
+Result run_worker(const std::string& self, const std::string& case_file, const Method& m,
+                  int threads) {
+  int fd[2];
+  if (pipe(fd) != 0)
+    throw std::runtime_error("pipe failed");
+  std::cout.flush();
+  const std::vector<std::string> args{self,
+                                      "--worker",
+                                      case_file,
+                                      std::to_string(int(m.kind)),
+                                      std::to_string(m.depth),
+                                      std::to_string(m.resolution),
+                                      std::to_string(threads),
+                                      std::to_string(fd[1])};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    std::vector<char*> argv;
+    for (const std::string& a : args)
+      argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(self.c_str(), argv.data());
+    _exit(127);
+  }
+  close(fd[1]);
+  Result r;
+  const ssize_t got = read(fd[0], &r, sizeof r);
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (got != sizeof r)
+    std::snprintf(r.error, sizeof r.error, "the worker died (status %d)", status);
+  return r;
+}
+
+// The worker: loads the case, runs the method, writes its Result to file descriptor `fd`.
+int worker(char** argv) {
+  const CloudCase c = load_case(argv[2]);
+  const Method m{static_cast<Method::Kind>(std::stoi(argv[3])), std::stoi(argv[4]),
+                 std::stoi(argv[5])};
+  const int threads = std::stoi(argv[6]), fd = std::stoi(argv[7]);
+  const Result r = run_child(m, c, threads);
+  return write(fd, &r, sizeof r) == sizeof r ? 0 : 1;
+}
+
+std::string num(double x, int digits = 3) {
+  if (std::isnan(x))
+    return "–";
+  std::ostringstream s;
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ','))
+    out.push_back(item);
+  return out;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 8 && std::string(argv[1]) == "--worker")
+    return worker(argv);
+  const std::string self = "/proc/self/exe";
+  std::string cases = "all";
+  int points = 100000, resolution = 256, threads = 2;
+  std::vector<int> depths{8, 9};
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--cases")
+      cases = v;
+    else if (a == "--points")
+      points = std::stoi(v);
+    else if (a == "--resolution")
+      resolution = std::stoi(v);
+    else if (a == "--threads")
+      threads = std::stoi(v);
+    else if (a == "--depths") {
+      depths.clear();
+      for (const std::string& d : split(v))
+        depths.push_back(std::stoi(d));
+    }
+  }
+  const std::vector<std::string> wanted = split(cases);
+  auto want = [&](const std::string& key) {
+    return cases == "all" || std::find(wanted.begin(), wanted.end(), key) != wanted.end();
+  };
+  std::vector<std::pair<std::string, std::function<CloudCase()>>> all{
+      {"bunny", [] { return bunny(); }},
+      {"blade", [&] { return blade_unstructured(points, 0.005, 0, 1); }},
+      {"blade-noisy", [&] { return blade_unstructured(points, 0.02, 0, 2); }},
+      {"blade-hole", [&] { return blade_unstructured(points, 0.005, 0.75, 3); }},
+      {"slices", [] { return blade_slices(false, 30, 500, 0.005, 4); }},
+      {"slices-noisy", [] { return blade_slices(false, 30, 500, 0.02, 5); }},
+      {"radial", [] { return blade_slices(true, 30, 500, 0.005, 6); }},
+      {"impeller", [&] { return model_cloud("impeller", points, 0, 7); }},
+      {"uav", [&] { return model_cloud("uav", points, 0, 8); }},
+      {"car", [&] { return model_cloud("car", points, 0, 9); }},
+      {"valve", [&] { return model_cloud("valve", points, 0, 10); }},
+      {"naca0011_plate", [&] { return model_cloud("naca0011_plate", points, 0, 11); }},
+      {"valve-noisy", [&] { return model_cloud("valve", points, 0.001, 12); }}};
+
+  std::cout << "# bench_clouds: points " << points << ", interlin resolution " << resolution
+            << ", threads " << threads << "\n";
+  std::ostringstream summary;
+  summary << "\n| cloud | better Poisson | its Chamfer | its time [s] | interlin Chamfer | "
+             "ratio | interlin time [s] | time ratio |\n|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [key, make] : all) {
+    if (!want(key))
+      continue;
+    const CloudCase c = make();
+    std::cout << "\n## " << c.name << " (" << key << ")\n\n"
+              << c.description << "; " << c.cloud.points.rows() << " points given to every method";
+    const std::string case_file = "/tmp/bench_clouds_" + std::to_string(getpid()) + ".case";
+    save_case(c, case_file);
+    if (c.truth.F.rows() > 0)
+      std::cout << "; truth: " << c.truth.F.rows() << " triangles, diagonal "
+                << num(c.truth.diagonal, 4) << ", its own sag " << num(c.truth.sag, 2);
+    std::cout << "\n\n| method | Chamfer / diag | Hausdorff / diag | zero-set Chamfer | "
+                 "hold-out mean / max | time [s] | peak MB | vertices |\n"
+                 "|---|---|---|---|---|---|---|---|\n";
+    std::vector<Method> methods{{Method::interlin, 0, resolution}};
+    if (c.sectioned())
+      methods.insert(methods.begin(), {Method::sectioned, 0, 0});
+    for (int d : depths) {
+      methods.push_back({Method::pcl, d, 0});
+      methods.push_back({Method::open3d, d, 0});
+    }
+    double best = kNaN, best_time = kNaN, ours = kNaN, our_time = kNaN;
+    std::string best_label;
+    std::ostringstream notes;
+    for (const Method& m : methods) {
+      const Result r = run_worker(self, case_file, m, threads);
+      const double score = c.truth.F.rows() > 0 ? r.chamfer : r.holdout_mean;
+      std::cout << "| " << m.label() << " | " << num(r.chamfer) << " | " << num(r.hausdorff)
+                << " | " << num(r.zs_chamfer) << " | " << num(r.holdout_mean) << " / "
+                << num(r.holdout_max) << " | " << num(r.seconds) << " | " << num(r.peak_mb) << " | "
+                << r.vertices << (r.error[0] ? std::string(" | ") + r.error : "") << " |\n";
+      std::cout.flush();
+      if (m.kind == Method::sectioned && !std::isnan(r.rms_cm))
+        notes << "\nsectioned: distance to the truth rms " << num(r.rms_cm / c.noise)
+              << " sigma, max " << num(r.max_cm / c.noise) << " sigma; fitted sections to "
+              << "the loft " << num(r.section_gap) << " cm (noise used " << num(r.noise)
+              << " cm)\n";
+      if (m.kind == (c.sectioned() ? Method::sectioned : Method::interlin)) {
+        ours = score;
+        our_time = r.seconds;
+      } else if ((m.kind == Method::pcl || m.kind == Method::open3d) && !std::isnan(score) &&
+                 (std::isnan(best) || score < best)) {
+        best = score;
+        best_time = r.seconds;
+        best_label = m.label();
+      }
+    }
+    std::cout << notes.str();
+    std::remove(case_file.c_str());
+    summary << "| " << c.name << " | " << best_label << " | " << num(best) << " | "
+            << num(best_time) << " | " << num(ours) << " | " << num(ours / best, 2) << " | "
+            << num(our_time) << " | " << num(our_time / best_time, 2) << " |\n";
+  }
+  std::cout << summary.str();
+  return 0;
+}

@@ -1,0 +1,63 @@
+#pragma once
+// The clouds of the point cloud -> surface benchmark (docs/benchmarks.md, "Point clouds"): the
+// Rotor 37 blade as a closed solid (the capped loft of data/rotor37/sections.csv is the truth)
+// scanned unstructured, with a hole, and in planar or radial slices; clouds sampled from the seed
+// R-function models (the zero set is the truth); PCL's bunny scan (no truth).
+
+#include "interlin/reconstruction/clouds/point_cloud.h"
+
+#include <Eigen/Core>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace interlin::bench {
+
+// A closed triangle mesh of the true surface; `sag` is its own measured distance from the
+// exact surface (largest over triangle centroids), the floor of every distance measured to it.
+struct TruthMesh {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  double diagonal = 0, sag = 0;
+};
+
+struct CloudCase {
+  std::string name, description;
+  PointCloud cloud; // points and the normals every method is given
+  TruthMesh truth;  // empty for the bunny
+  double noise = 0; // sigma of the simulated noise (0 for the bunny: unknown)
+  // Sectioned scans: the station coordinate of a point (x for planar slices, the radius about z
+  // for radial ones) and the range of the stations; distances are measured where it is inside.
+  enum class Station { none, x, radius } stations = Station::none;
+  double station_lo = 0, station_hi = 0;
+  bool sectioned() const { return stations != Station::none; }
+  double station(const Eigen::Vector3d& p) const {
+    return stations == Station::x ? p(0) : std::hypot(p(0), p(1));
+  }
+};
+
+// The case in a binary file, for a benchmark worker process (save then load gives it back).
+void save_case(const CloudCase& c, const std::string& path);
+CloudCase load_case(const std::string& path);
+
+// Rotor 37 blade scanned without structure: n points uniform by area on the capped loft, noise
+// sigma (cm). hole > 0 removes the points within that distance of a suction-side point at
+// mid-span.
+CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed);
+
+// Rotor 37 blade scanned in `slices` planar sections x = const (radial: cylinders r = const about
+// the z axis) between hub and tip, `per_slice` points each, evenly spaced along the profile,
+// noise sigma (cm). The normals are the exact ones.
+CloudCase blade_slices(bool radial, int slices, int per_slice, double sigma, unsigned seed);
+
+// n points on the zero set of an R-function model (data/models/NAME.rf) with its normalised
+// gradient as normal, noise sigma relative to the bounding-box diagonal.
+CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned seed);
+
+// data/clouds/bun0.pcd (its normals re-oriented by prepare_cloud).
+CloudCase bunny();
+
+// Points uniform by area on a triangle mesh (with the triangle normals).
+PointCloud sample_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int n, unsigned seed);
+
+} // namespace interlin::bench
