@@ -20,8 +20,9 @@ using Eigen::Vector3d;
 
 namespace {
 
-SectionBodyBuild build(const std::vector<Section>& s, int resolution) {
+SectionBodyBuild build(const std::vector<Section>& s, int resolution, LoftOptions loft = {}) {
   SectionBodyOptions o;
+  o.loft = loft;
   o.resolution = resolution;
   return build_section_body(s, o);
 }
@@ -216,17 +217,23 @@ TEST_CASE("Section body: gradient matches central differences", "[implicit]") {
 }
 
 TEST_CASE("Section body: Rotor 37, every input point exact", "[implicit][rotor37]") {
-  const SectionBodyBuild b = build(test::rotor37(), 40);
-  const double diag = b.report.bbox_diagonal;
-  const ImplicitFunction f = section_body_function(b.model);
-  double worst = 0;
-  for (const Section& s : test::rotor37())
-    worst = std::max(worst, omega(f, s.points).cwiseAbs().maxCoeff());
-  CHECK(worst <= 1e-12 * diag);
-  const BodyPatches B = body_patches(b.model.side, b.model.edge_u);
-  CHECK(omega(f, boundary_points(B, 5000, 3)).cwiseAbs().maxCoeff() <= 1e-12 * diag);
-  // The tip's span spline folds back by 5e-4 cm (sections 12 and 13 are 0.035 cm apart): the
-  // sign logic treats the fold as the tip edge.
-  CHECK(B.fold_zone[1] > 0);
-  CHECK(B.fold_zone[1] < 1e-2);
+  // The default spanwise model (station parameters on Rotor 37's stream surfaces) and the
+  // centripetal cubic one, whose tip span spline folds back by 5e-4 cm (sections 12 and 13 are
+  // 0.035 cm apart): the sign logic must treat that fold as the tip edge.
+  LoftOptions folding;
+  folding.span = SpanParameters::centripetal;
+  folding.span_degree = 3;
+  for (const bool folds : {false, true}) {
+    const SectionBodyBuild b = build(test::rotor37(), 40, folds ? folding : LoftOptions{});
+    const double diag = b.report.bbox_diagonal;
+    const ImplicitFunction f = section_body_function(b.model);
+    double worst = 0;
+    for (const Section& s : test::rotor37())
+      worst = std::max(worst, omega(f, s.points).cwiseAbs().maxCoeff());
+    CHECK(worst <= 1e-12 * diag);
+    const BodyPatches B = body_patches(b.model.side, b.model.edge_u);
+    CHECK(omega(f, boundary_points(B, 5000, 3)).cwiseAbs().maxCoeff() <= 1e-12 * diag);
+    CHECK((B.fold_zone[1] > 0) == folds);
+    CHECK(B.fold_zone[1] < 1e-2);
+  }
 }
