@@ -58,6 +58,8 @@ void put_raw(std::ostream& out, const std::vector<T>& v) {
 template <class T>
 void get_raw(const char* src, size_t count, std::vector<T>& v) {
   v.resize(count);
+  if (count == 0)
+    return; // memcpy needs non-null pointers even for zero bytes
   std::memcpy(v.data(), src, count * 8);
   if constexpr (std::endian::native != std::endian::little)
     for (T& x : v) {
