@@ -1,5 +1,7 @@
 #include "interlin/reconstruction/loft/closest_point.h"
 
+#include "interlin/splines/surface_foot.h"
+
 #include <flann/flann.hpp>
 
 #include <Eigen/Dense>
@@ -12,67 +14,14 @@ namespace interlin {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
-using Eigen::Vector2d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 
 namespace {
 
-struct Foot {
-  double u, v, dist;
-  Vector3d x;
-};
-
-// Newton's method for min_{u,v} |S(u,v) - p|^2 / 2 with backtracking; v is kept in its domain
-// (projected), u wraps for closed surfaces and is kept in its domain otherwise.
-Foot newton_foot(const ParametricSurface& S, const Vector3d& p, double u, double v) {
-  const Eigen::Vector4d& dom = S.domain;
-  const auto clampu = [&](double x) {
-    if (S.closed_u)
-      return dom(0) + (x - dom(0)) -
-             (dom(1) - dom(0)) * std::floor((x - dom(0)) / (dom(1) - dom(0)));
-    return std::clamp(x, dom(0), dom(1));
-  };
-  const auto clampv = [&](double x) { return std::clamp(x, dom(2), dom(3)); };
-  Vector3d x = S.point(u, v);
-  double f = 0.5 * (x - p).squaredNorm();
-  for (int it = 0; it < 50; ++it) {
-    const SurfaceJet d = S.derivatives(u, v);
-    const Vector3d r = x - p;
-    const Vector2d g(d.Su.dot(r), d.Sv.dot(r));
-    Eigen::Matrix2d H;
-    H << d.Su.dot(d.Su) + d.Suu.dot(r), d.Su.dot(d.Sv) + d.Suv.dot(r),
-        d.Su.dot(d.Sv) + d.Suv.dot(r), d.Sv.dot(d.Sv) + d.Svv.dot(r);
-    Eigen::LDLT<Eigen::Matrix2d> ldlt(H);
-    Vector2d step;
-    if (ldlt.info() == Eigen::Success && ldlt.isPositive() && H.determinant() > 0)
-      step = -ldlt.solve(g);
-    else { // Gauss–Newton: the first-order part of H is positive semi-definite
-      Eigen::Matrix2d J;
-      J << d.Su.dot(d.Su), d.Su.dot(d.Sv), d.Su.dot(d.Sv), d.Sv.dot(d.Sv);
-      step = -J.ldlt().solve(g);
-    }
-    if (!step.allFinite())
-      break;
-    double t = 1;
-    bool moved = false;
-    for (int ls = 0; ls < 30; ++ls, t *= 0.5) {
-      const double un = clampu(u + t * step(0)), vn = clampv(v + t * step(1));
-      const Vector3d xn = S.point(un, vn);
-      const double fn = 0.5 * (xn - p).squaredNorm();
-      // Near the minimum f changes below its own round-off: accept such steps, stop once the
-      // step itself is at round-off level.
-      if (fn <= f + 1e-13 * f + 1e-300) {
-        const double du = std::abs(un - u), dv = std::abs(vn - v);
-        u = un, v = vn, x = xn, f = fn;
-        moved = du + dv > 1e-15 * (1 + std::abs(u) + std::abs(v));
-        break;
-      }
-    }
-    if (!moved)
-      break;
-  }
-  return {u, v, std::sqrt(2 * f), x};
+// The local Newton search shared with the implicit body equations (splines/surface_foot.h).
+SurfaceFoot newton_foot(const ParametricSurface& S, const Vector3d& p, double u, double v) {
+  return surface_foot(S.derivatives, S.domain, S.closed_u, p, u, v, 50);
 }
 
 SurfaceProjection sized(Index n) {
@@ -84,11 +33,11 @@ SurfaceProjection sized(Index n) {
   return out;
 }
 
-void store(SurfaceProjection& out, Index i, const Foot& f) {
+void store(SurfaceProjection& out, Index i, const SurfaceFoot& f) {
   out.u(i) = f.u;
   out.v(i) = f.v;
-  out.distance(i) = f.dist;
-  out.foot.row(i) = f.x.transpose();
+  out.distance(i) = f.distance;
+  out.foot.row(i) = f.jet.S.transpose();
 }
 
 } // namespace
@@ -129,11 +78,12 @@ SurfaceProjection project_to_surface(const ParametricSurface& S, const MatrixXd&
   index.knnSearch(query, nn, d2, starts, flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
   SurfaceProjection out = sized(P.rows());
   for (Index i = 0; i < P.rows(); ++i) {
-    Foot best{0, 0, INFINITY, Vector3d::Zero()};
+    SurfaceFoot best;
+    best.distance = INFINITY;
     for (size_t c : nn[static_cast<size_t>(i)]) {
       const Index gi = static_cast<Index>(c) % su, gj = static_cast<Index>(c) / su;
-      const Foot f = newton_foot(S, P.row(i).transpose(), gu(gi), gv(gj));
-      if (f.dist < best.dist)
+      const SurfaceFoot f = newton_foot(S, P.row(i).transpose(), gu(gi), gv(gj));
+      if (f.distance < best.distance)
         best = f;
     }
     store(out, i, best);
