@@ -81,22 +81,6 @@ OcctResult read_with_occt(const std::string& path, const char* cascade_unit) {
   return r;
 }
 
-// Random bicubic surface, control points in [-size, size]^3 (non-uniform simple knots: C2).
-BSplineSurface random_bicubic(Eigen::Index nu, Eigen::Index nv, double size, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> coord(-size, size);
-  BSplineSurface s;
-  s.num_u = nu;
-  s.num_v = nv;
-  s.knots_u = test::random_clamped_knots(rng, 3, nu, 0.0, 1.0);
-  s.knots_v = test::random_clamped_knots(rng, 3, nv, 0.0, 1.0);
-  s.ctrl.resize(nu * nv, 3);
-  for (Eigen::Index r = 0; r < s.ctrl.rows(); ++r)
-    for (int c = 0; c < 3; ++c)
-      s.ctrl(r, c) = coord(rng);
-  return s;
-}
-
 // ~1000 parameter pairs: the domain corners, every knot pair on a coarse lattice, and random
 // pairs.
 std::vector<std::pair<double, double>> sample_parameters(const BSplineSurface& s) {
@@ -135,37 +119,12 @@ void check_same_parametrisation(const BSplineSurface& s, const Handle(Geom_BSpli
   CHECK(v1 == s.knots_v(s.num_v));
 }
 
-// Closed tube: periodic cubic cross-section (8 control points on a circle of radius 2 with a
-// wobble, clamped by periodic_to_clamped so the seam is C2), swept along z with degree `pv`.
-BSplineSurface tube(int pv) {
-  const int p = 3;
-  const BSplineCurve closed = test::clamped_ring(0.3);
-  BSplineSurface s;
-  s.degree_u = p;
-  s.degree_v = pv;
-  s.num_u = closed.ctrl.rows();
-  s.num_v = pv + 1;
-  s.knots_u = closed.knots;
-  s.knots_v.resize(2 * pv + 2);
-  s.knots_v.head(pv + 1).setZero();
-  s.knots_v.tail(pv + 1).setConstant(5.0);
-  s.closed_u = true;
-  s.ctrl.resize(s.num_u * s.num_v, 3);
-  for (Eigen::Index j = 0; j < s.num_v; ++j) {
-    const double t = static_cast<double>(j) / static_cast<double>(pv);
-    for (Eigen::Index i = 0; i < s.num_u; ++i)
-      s.ctrl.row(i + s.num_u * j) << closed.ctrl(i, 0) * (1.0 + 0.2 * t),
-          closed.ctrl(i, 1) * (1.0 - 0.1 * t), 10.0 * t;
-  }
-  return s;
-}
-
 } // namespace
 
 TEST_CASE("OpenCASCADE reads our IGES as one B-spline face with the same geometry", "[occt]") {
   test::TempDir tmp("occt-bicubic");
   const double size = 100.0;
-  const BSplineSurface s = random_bicubic(9, 7, size, 777u);
+  const BSplineSurface s = test::random_bicubic(9, 7, size, 777u);
   const std::string path = tmp.file("bicubic.igs");
   write_iges(path, s, {LengthUnit::mm, "interlin test", "OCCT cross-check"});
 
@@ -203,7 +162,7 @@ TEST_CASE("OpenCASCADE reads our IGES as one B-spline face with the same geometr
 TEST_CASE("OpenCASCADE applies the IGES unit flag as documented", "[occt]") {
   test::TempDir tmp("occt-units");
   const double size = 2.0;
-  const BSplineSurface s = random_bicubic(5, 6, size, 31u);
+  const BSplineSurface s = test::random_bicubic(5, 6, size, 31u);
   const std::string path = tmp.file("metres.igs");
   write_iges(path, s, {LengthUnit::m, "", ""});
   // Reader in metres: coordinates as written.
@@ -228,7 +187,7 @@ TEST_CASE("OpenCASCADE applies the IGES unit flag as documented", "[occt]") {
 TEST_CASE("OpenCASCADE reads a closed_u tube as one closed face", "[occt]") {
   test::TempDir tmp("occt-tube");
   for (int pv : {1, 3}) {
-    const BSplineSurface s = tube(pv);
+    const BSplineSurface s = test::swept_tube(pv);
     const std::string path = tmp.file("tube.igs");
     write_iges(path, s);
     const OcctResult r = read_with_occt(path, "MM");

@@ -102,46 +102,6 @@ double max_point_difference(const BSplineSurface& s, const Handle(Geom_BSplineSu
   return worst;
 }
 
-BSplineSurface random_bicubic(double size, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> coord(-size, size);
-  BSplineSurface s;
-  s.num_u = 8;
-  s.num_v = 6;
-  s.knots_u = test::random_clamped_knots(rng, 3, s.num_u, 0.0, 1.0);
-  s.knots_v = test::random_clamped_knots(rng, 3, s.num_v, 0.0, 2.0);
-  s.ctrl.resize(s.num_u * s.num_v, 3);
-  for (Eigen::Index r = 0; r < s.ctrl.rows(); ++r)
-    for (int c = 0; c < 3; ++c)
-      s.ctrl(r, c) = coord(rng);
-  return s;
-}
-
-// The closed ring of test_surfaces.h swept up z = 0..10 and scaled by (1 + 0.2 t, 1 - 0.1 t) at
-// height 10 t (degree pv along v, v in [0, 5]): sections are planar, area A0 (1 + 0.2 t)(1 - 0.1
-// t).
-BSplineSurface tube(int pv) {
-  const BSplineCurve ring = test::clamped_ring(0.3);
-  BSplineSurface s;
-  s.degree_u = 3;
-  s.degree_v = pv;
-  s.num_u = ring.ctrl.rows();
-  s.num_v = pv + 1;
-  s.knots_u = ring.knots;
-  s.knots_v.resize(2 * pv + 2);
-  s.knots_v.head(pv + 1).setZero();
-  s.knots_v.tail(pv + 1).setConstant(5.0);
-  s.closed_u = true;
-  s.ctrl.resize(s.num_u * s.num_v, 3);
-  for (Eigen::Index j = 0; j < s.num_v; ++j) {
-    const double t = double(j) / pv;
-    for (Eigen::Index i = 0; i < s.num_u; ++i)
-      s.ctrl.row(i + s.num_u * j) << ring.ctrl(i, 0) * (1 + 0.2 * t),
-          ring.ctrl(i, 1) * (1 - 0.1 * t), 10 * t;
-  }
-  return s;
-}
-
 // Area enclosed by the planar ring: Green's theorem 1/2 closed integral of (x y' - y x'), exact by
 // 4-point Gauss per span (the integrand has degree 5).
 double ring_area() {
@@ -173,7 +133,7 @@ TEST_CASE("OpenCASCADE reads our STEP surface as one B-spline face with the same
           "[occt][step]") {
   test::TempDir tmp("occt-step");
   const double size = 100;
-  const BSplineSurface s = random_bicubic(size, 4242u);
+  const BSplineSurface s = test::random_bicubic(8, 6, size, 4242u, 2.0);
   const std::string path = tmp.file("bicubic.step");
   write_step(path, s);
   const OcctShape r = read_step(path);
@@ -193,7 +153,7 @@ TEST_CASE("OpenCASCADE reads our STEP surface as one B-spline face with the same
 
 TEST_CASE("OpenCASCADE applies the STEP length unit as written", "[occt][step]") {
   test::TempDir tmp("occt-step-units");
-  const BSplineSurface s = random_bicubic(2, 99u);
+  const BSplineSurface s = test::random_bicubic(8, 6, 2, 99u, 2.0);
   const struct {
     LengthUnit unit;
     double mm;
@@ -216,7 +176,7 @@ TEST_CASE("A capped closed tube is one valid solid of the closed-form volume", "
   test::TempDir tmp("occt-step-tube");
   const double exact = 10 * ring_area() * (1 + 0.05 - 0.02 / 3);
   for (int pv : {1, 3}) {
-    const BSplineSurface s = tube(pv);
+    const BSplineSurface s = test::swept_tube(pv);
     const std::array<StepCap, 2> caps = caps_of(s);
     for (const bool capped : {false, true}) {
       const std::string path = tmp.file("tube.step");
