@@ -12,6 +12,7 @@
 #include "interlin/reconstruction/implicit/section_body_build.h"
 #include "interlin/reconstruction/meshing/ray_cast.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
+#include "section_body_checks.h"
 #include "support/test_blades.h"
 #include "support/test_sections.h"
 
@@ -23,16 +24,11 @@ using namespace interlin;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::Vector3d;
+using test::omega;
 
 namespace {
 
 constexpr int kPoints = 100000;
-
-Eigen::VectorXd omega(const ImplicitFunction& f, const MatrixXd& P) {
-  Eigen::VectorXd w(P.rows());
-  f.value(Points3(P), w);
-  return w;
-}
 
 void measure(const std::string& name, const std::vector<Section>& sections) {
   const SectionBodyBuild b = build_section_body(sections);
@@ -45,11 +41,7 @@ void measure(const std::string& name, const std::vector<Section>& sections) {
   double input = 0;
   for (const Section& s : sections)
     input = std::max(input, omega(f, s.points).cwiseAbs().maxCoeff());
-  MatrixXd S(kPoints, 3);
-  for (int i = 0; i < kPoints; ++i)
-    S.row(i) = evaluate(B, PatchSeed{i % 5 == 0 ? 1 : i % 5 == 1 ? 2 : 0, U(rng), U(rng)})
-                   .transpose();
-  const double boundary = omega(f, S).cwiseAbs().maxCoeff();
+  const double boundary = omega(f, test::boundary_points(B, kPoints, 2027)).cwiseAbs().maxCoeff();
   // Sign and distance error at 1e5 random box points.
   MatrixXd P(kPoints, 3);
   for (int i = 0; i < kPoints; ++i)
@@ -60,13 +52,7 @@ void measure(const std::string& name, const std::vector<Section>& sections) {
   const std::vector<BodyDistance> d = proj.distances(P);
   MatrixXd V;
   Eigen::MatrixXi F;
-  SurfaceMeshOptions mo;
-  mo.nu = 800;
-  mo.nv = 200;
-  mo.cap = true;
-  mo.required_v.assign(b.report.loft.section_v.data(),
-                       b.report.loft.section_v.data() + b.report.loft.section_v.size());
-  surface_mesh(to_piecewise(b.model.side), mo, V, F);
+  test::capped_mesh(b, V, F);
   const std::vector<char> in = inside_by_ray_parity(V, F, P);
   long wrong_parity = 0, wrong_exact = 0, by_parity = 0;
   double max_err = 0;

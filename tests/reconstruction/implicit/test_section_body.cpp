@@ -5,6 +5,7 @@
 #include "interlin/reconstruction/implicit/section_body_build.h"
 #include "interlin/reconstruction/meshing/ray_cast.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
+#include "section_body_checks.h"
 #include "support/test_blades.h"
 #include "support/test_sections.h"
 
@@ -17,6 +18,9 @@ using namespace interlin;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::Vector3d;
+using test::boundary_points;
+using test::capped_mesh;
+using test::omega;
 
 namespace {
 
@@ -34,38 +38,6 @@ const SectionBodyBuild& family(size_t f) {
   if (it == built.end())
     it = built.emplace(f, build(test::blade_sections(test::blade_families()[f]), 32)).first;
   return it->second;
-}
-
-// omega at the rows of P.
-Eigen::VectorXd omega(const ImplicitFunction& f, const MatrixXd& P) {
-  Eigen::VectorXd w(P.rows());
-  f.value(Points3(P), w);
-  return w;
-}
-
-// Random points of the boundary: side (u, v uniform) and caps (s, t uniform).
-MatrixXd boundary_points(const BodyPatches& B, int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(0, 1);
-  MatrixXd P(n, 3);
-  for (int i = 0; i < n; ++i)
-    P.row(i) = evaluate(B, PatchSeed{i % 5 == 0   ? 1
-                                     : i % 5 == 1 ? 2
-                                                  : 0,
-                                     U(rng), U(rng)})
-                   .transpose();
-  return P;
-}
-
-// The capped loft mesh: the independent body (ray parity) of `interlin loft --cap`.
-void capped_mesh(const SectionBodyBuild& b, MatrixXd& V, Eigen::MatrixXi& F) {
-  SurfaceMeshOptions mo;
-  mo.nu = 800;
-  mo.nv = 200;
-  mo.cap = true;
-  mo.required_v.assign(b.report.loft.section_v.data(),
-                       b.report.loft.section_v.data() + b.report.loft.section_v.size());
-  surface_mesh(to_piecewise(b.model.side), mo, V, F);
 }
 
 } // namespace
