@@ -33,11 +33,12 @@ PlaneTraces plane_traces(const std::function<double(const Vector3d&)>& u,
     for (Eigen::Index i = 0; i < nodes[axis].size(); ++i) {
       const double c = nodes[axis](i);
       const auto [a, b] = other_axes(axis);
-      t.traces[axis].push_back([u, axis, a, b, c](double s, double r) {
+      // Init-captures: clang before 16 cannot capture structured bindings by name.
+      t.traces[axis].push_back([u, axis, s_axis = a, r_axis = b, c](double s, double r) {
         Vector3d q;
         q(axis) = c;
-        q(a) = s;
-        q(b) = r;
+        q(s_axis) = s;
+        q(r_axis) = r;
         return u(q);
       });
     }
