@@ -11,10 +11,15 @@ triangles (M, 3) int32. Errors raise InputError (bad input files; the message is
     L.surface.write("blade.igs", units="cm")             # IGES, JSON, STL/OBJ/PLY/OFF, PNG
     H = interlin.holdout("data/rotor37/sections.csv", every=2)
     V, F = interlin.mesh_implicit(interlin.load_model("data/models/uav.rf"), resolution=96)
+    M = interlin.implicit("data/rotor37/sections.csv")   # the blade body's equation omega
+    M.write("blade.ifl"); omega = interlin.load_model("blade.ifl")(points)
 
 Modules: splines (B-splines, seed 001 Theorems 1 and 2, seed 004 natural curves and cascade
 profiles), interlineation (gordon, coons, hermite_coons on Python callables as traces),
-interlin.rf (R-function expressions) and Implicit bodies, loft and hold-out, meshing.
+interlin.rf (R-function expressions) and Implicit bodies, interflatation (grid_interflatation,
+box_interflatation on Python callables as plane traces; region_interlineation: seed 001
+Theorem 4 on plane regions; cubic_grid), implicit models (implicit(), .rf and .ifl files
+through load_model), loft and hold-out with the spanwise model, meshing.
 README.md ("Use it from Python") and docs/design.md describe the module.
 """
 import numpy as _np
@@ -47,6 +52,19 @@ def normal_derivative_traces(f, x, y):
     dx_on_x = [(lambda s, d, a=float(a): f(_np.full_like(s, a), s, 1, d)) for a in _np.asarray(x)]
     dy_on_y = [(lambda s, d, b=float(b): f(s, _np.full_like(s, b), d, 1)) for b in _np.asarray(y)]
     return dx_on_x, dy_on_y
+
+
+def plane_traces_from_function(u, nodes):
+    """Traces of u on the planes of `nodes`, for grid_interflatation().
+
+    u(x, y, z) -> array (NumPy arrays of one shape in); nodes = [x, y, z] plane positions.
+    Returns [on_x, on_y, on_z]: on_x[i](y, z) = u(x[i], y, z), on_y[j](x, z) = u(x, y[j], z),
+    on_z[k](x, y) = u(x, y, z[k]).
+    """
+    x, y, z = (_np.asarray(v, float) for v in nodes)
+    return [[(lambda b, c, a=float(a): u(_np.full_like(b, a), b, c)) for a in x],
+            [(lambda a, c, b=float(b): u(a, _np.full_like(a, b), c)) for b in y],
+            [(lambda a, b, c=float(c): u(a, b, _np.full_like(a, c))) for c in z]]
 
 
 def cox_de_boor(X, n, x):

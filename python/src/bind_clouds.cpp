@@ -27,32 +27,26 @@ struct CloudModel {
 };
 
 py::dict info_dict(const CloudFitInfo& i) {
-  py::dict d;
-  d["noise"] = i.noise;
-  d["noise_estimated"] = i.noise_estimated;
-  d["cells"] = i.cells;
-  d["leaves"] = i.leaves;
-  d["two_sheet_leaves"] = i.two_sheet_leaves;
-  d["far_leaves"] = i.far_leaves;
-  d["depth"] = i.depth;
-  d["rms_distance"] = i.rms_distance;
-  d["max_distance"] = i.max_distance;
-  d["within_3_sigma"] = i.within_3_sigma;
-  d["flipped"] = i.flipped;
-  return d;
+  return fields_dict(i, field("noise", &CloudFitInfo::noise),
+                     field("noise_estimated", &CloudFitInfo::noise_estimated),
+                     field("cells", &CloudFitInfo::cells), field("leaves", &CloudFitInfo::leaves),
+                     field("two_sheet_leaves", &CloudFitInfo::two_sheet_leaves),
+                     field("far_leaves", &CloudFitInfo::far_leaves),
+                     field("depth", &CloudFitInfo::depth),
+                     field("rms_distance", &CloudFitInfo::rms_distance),
+                     field("max_distance", &CloudFitInfo::max_distance),
+                     field("within_3_sigma", &CloudFitInfo::within_3_sigma),
+                     field("flipped", &CloudFitInfo::flipped));
 }
 
 py::dict report_dict(const CloudPrepReport& r) {
-  py::dict d;
-  d["read"] = r.read;
-  d["distinct"] = r.distinct;
-  d["outliers"] = r.outliers;
-  d["kept"] = r.kept;
-  d["normals_estimated"] = r.normals_estimated;
-  d["normals_reoriented"] = r.normals_reoriented;
-  d["disagreement"] = r.disagreement;
-  d["components"] = r.components;
-  return d;
+  return fields_dict(
+      r, field("read", &CloudPrepReport::read), field("distinct", &CloudPrepReport::distinct),
+      field("outliers", &CloudPrepReport::outliers), field("kept", &CloudPrepReport::kept),
+      field("normals_estimated", &CloudPrepReport::normals_estimated),
+      field("normals_reoriented", &CloudPrepReport::normals_reoriented),
+      field("disagreement", &CloudPrepReport::disagreement),
+      field("components", &CloudPrepReport::components));
 }
 
 void bind_cloud_io(py::module_& m) {

@@ -49,7 +49,8 @@ bool is_mesh_extension(const std::string& e) {
   return e == ".stl" || e == ".obj" || e == ".ply" || e == ".off";
 }
 
-// The path of a str or os.PathLike, else nullopt.
+} // namespace
+
 std::optional<std::string> path_of(const py::handle& o) {
   if (py::isinstance<py::str>(o))
     return o.cast<std::string>();
@@ -57,6 +58,8 @@ std::optional<std::string> path_of(const py::handle& o) {
     return o.attr("__fspath__")().cast<std::string>();
   return std::nullopt;
 }
+
+namespace {
 
 std::string require_path(const py::handle& o) {
   if (const auto p = path_of(o))
@@ -316,13 +319,7 @@ std::vector<T> items_of(const py::handle& list, const char* what, Index min_rows
   return items;
 }
 
-// Loft inputs as the CLI reads them: a path (str or os.PathLike), a SectionSet, or a list of
-// Section objects or (P, 3) arrays (ids "0", "1", ...).
-struct SectionsArg {
-  std::vector<Section> sections;
-  std::string path; // empty unless read from a file
-  std::vector<std::string> warnings;
-};
+} // namespace
 
 SectionsArg sections_arg(const py::object& o) {
   if (const auto path = path_of(o)) {
@@ -339,6 +336,8 @@ SectionsArg sections_arg(const py::object& o) {
   }
   return {items_of<Section>(o, "section points", 1), "", {}};
 }
+
+namespace {
 
 // Guides: None, a path, a GuideSet, or a list of Guide objects or (P, 3) arrays.
 std::optional<GuideSet> guides_arg(const py::object& o) {
@@ -373,10 +372,7 @@ int span_degree_arg(const py::object& o) {
   return q;
 }
 
-struct LoftArgs {
-  GuidedLoftOptions options;
-  std::optional<GuideSet> guides;
-};
+} // namespace
 
 LoftArgs loft_args(int degree, const py::object& span_degree, const std::string& align,
                    const std::string& match, const py::object& param, const std::string& span,
@@ -404,6 +400,8 @@ LoftArgs loft_args(int degree, const py::object& span_degree, const std::string&
   a.guides = guides_arg(guides);
   return a;
 }
+
+namespace {
 
 // The result of loft(): the loft, its surface ready for evaluation, the guides' fits.
 struct Loft {
@@ -486,12 +484,15 @@ rows of the crossings, input_deviation (per input point), deviation (per row), c
       .def_readonly("reversed", &GuideFit::reversed);
   py::class_<SpanCandidate>(m, "SpanCandidate", R"(One spanwise model: parameters ("station",
 "chord", "centripetal", "uniform"), degree, and its leave-one-out error loo_max, loo_rms (each
-interior section withheld in turn; NaN without interior sections).)")
+interior section withheld in turn; NaN without interior sections), score.)")
       .def_property_readonly("parameters",
                              [](const SpanCandidate& c) { return to_string(c.parameters); })
       .def_readonly("degree", &SpanCandidate::degree)
       .def_readonly("loo_max", &SpanCandidate::loo_max)
-      .def_readonly("loo_rms", &SpanCandidate::loo_rms);
+      .def_readonly("loo_rms", &SpanCandidate::loo_rms)
+      .def_property_readonly("score", &span_model_score,
+                             "What span=\"auto\" minimises (lower is better; ties go to the "
+                             "earlier candidate).");
   py::class_<SpanModel>(m, "SpanModel", R"(The spanwise model a loft used: used (SpanCandidate),
 chosen (by leave-one-out among candidates, else fixed by the options), candidates, stacking
 ("parallel planes", "coaxial surfaces of revolution about z" or "none"), stations (K,) (empty

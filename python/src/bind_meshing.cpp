@@ -23,50 +23,43 @@ void check_mesh_arrays(const MatrixXd& V, const MatrixXi& F) {
 }
 
 py::dict report_dict(const MeshReport& r) {
-  py::dict d;
-  d["vertices"] = r.vertices;
-  d["faces"] = r.faces;
-  d["boundary_edges"] = r.boundary_edges;
-  d["nonmanifold_edges"] = r.nonmanifold_edges;
-  d["nonmanifold_vertices"] = r.nonmanifold_vertices;
-  d["components"] = r.components;
-  d["euler"] = r.euler;
-  d["genus"] = r.genus;
-  d["consistently_oriented"] = r.consistently_oriented;
-  d["area"] = r.area;
-  d["volume"] = r.volume;
-  d["min_angle_deg"] = r.min_angle_deg;
-  d["max_aspect_ratio"] = r.max_aspect_ratio;
-  d["degenerate_faces"] = r.degenerate_faces;
+  py::dict d =
+      fields_dict(r, field("vertices", &MeshReport::vertices), field("faces", &MeshReport::faces),
+                  field("boundary_edges", &MeshReport::boundary_edges),
+                  field("nonmanifold_edges", &MeshReport::nonmanifold_edges),
+                  field("nonmanifold_vertices", &MeshReport::nonmanifold_vertices),
+                  field("components", &MeshReport::components), field("euler", &MeshReport::euler),
+                  field("genus", &MeshReport::genus),
+                  field("consistently_oriented", &MeshReport::consistently_oriented),
+                  field("area", &MeshReport::area), field("volume", &MeshReport::volume),
+                  field("min_angle_deg", &MeshReport::min_angle_deg),
+                  field("max_aspect_ratio", &MeshReport::max_aspect_ratio),
+                  field("degenerate_faces", &MeshReport::degenerate_faces));
   d["watertight"] = r.watertight();
   return d;
 }
 
 py::dict volume_info_dict(const VolumeMeshInfo& i) {
-  py::dict d;
-  d["inside_nodes"] = i.inside_nodes;
-  d["dropped_nodes"] = i.dropped_nodes;
-  d["removed_cells"] = i.removed_cells;
-  d["inner_cells"] = i.inner_cells;
-  d["layer_elements"] = i.layer_elements;
-  d["unprojected"] = i.unprojected;
-  d["max_boundary_f"] = i.max_boundary_f;
-  return d;
+  return fields_dict(i, field("inside_nodes", &VolumeMeshInfo::inside_nodes),
+                     field("dropped_nodes", &VolumeMeshInfo::dropped_nodes),
+                     field("removed_cells", &VolumeMeshInfo::removed_cells),
+                     field("inner_cells", &VolumeMeshInfo::inner_cells),
+                     field("layer_elements", &VolumeMeshInfo::layer_elements),
+                     field("unprojected", &VolumeMeshInfo::unprojected),
+                     field("max_boundary_f", &VolumeMeshInfo::max_boundary_f));
 }
 
 py::dict quality_dict(const VolumeQuality& q) {
-  py::dict d;
-  d["elements"] = q.elements;
-  d["inverted"] = q.inverted;
-  d["volume"] = q.volume;
-  d["min_dihedral_deg"] = q.min_dihedral_deg;
-  d["max_dihedral_deg"] = q.max_dihedral_deg;
-  d["min_scaled_jacobian"] = q.min_scaled_jacobian;
-  d["mean_scaled_jacobian"] = q.mean_scaled_jacobian;
-  d["min_radius_ratio"] = q.min_radius_ratio;
-  d["mean_radius_ratio"] = q.mean_radius_ratio;
-  d["outside_10_170"] = q.outside_10_170;
-  return d;
+  return fields_dict(q, field("elements", &VolumeQuality::elements),
+                     field("inverted", &VolumeQuality::inverted),
+                     field("volume", &VolumeQuality::volume),
+                     field("min_dihedral_deg", &VolumeQuality::min_dihedral_deg),
+                     field("max_dihedral_deg", &VolumeQuality::max_dihedral_deg),
+                     field("min_scaled_jacobian", &VolumeQuality::min_scaled_jacobian),
+                     field("mean_scaled_jacobian", &VolumeQuality::mean_scaled_jacobian),
+                     field("min_radius_ratio", &VolumeQuality::min_radius_ratio),
+                     field("mean_radius_ratio", &VolumeQuality::mean_radius_ratio),
+                     field("outside_10_170", &VolumeQuality::outside_10_170));
 }
 
 void bind_volume_meshes(py::module_& m) {

@@ -4,6 +4,7 @@
 #include "bindings.h"
 
 #include "interlin/interflatation/implicit_function.h"
+#include "interlin/interflatation/load_implicit.h"
 #include "interlin/interflatation/rfunctions/curve_distance.h"
 #include "interlin/interflatation/rfunctions/expression.h"
 #include "interlin/interflatation/rfunctions/folding.h"
@@ -38,6 +39,8 @@ const double* points_data(const DoubleArray& P) {
   return P.data();
 }
 
+} // namespace
+
 VectorXd values_at(const ImplicitFunction& f, const DoubleArray& P) {
   const double* p = points_data(P);
   const Index n = P.shape(0);
@@ -71,15 +74,7 @@ py::tuple gradients_at(const ImplicitFunction& f, const DoubleArray& P) {
   return py::make_tuple(std::move(F), std::move(G));
 }
 
-// A Python callable kept by C++ objects that may be copied and destroyed on threads without the
-// GIL (the meshing workers): the last owner takes the GIL to release it.
-struct PythonCallable {
-  py::function f;
-  ~PythonCallable() {
-    py::gil_scoped_acquire gil;
-    f = py::function();
-  }
-};
+namespace {
 
 // F(P) -> (N,) and optionally grad(P) -> (F (N,), G (N, 3)) as an ImplicitFunction.
 ImplicitFunction from_python(py::function value, std::optional<py::function> gradient,
@@ -144,13 +139,16 @@ Attribute box: (2, 3) array [min, max], or None.)")
       "load_model",
       [options](const std::string& path, const std::map<std::string, double>& parameters,
                 const std::string& output) {
-        return load_model(path, options(parameters, output));
+        py::gil_scoped_release release;
+        return load_implicit(path, options(parameters, output));
       },
       py::arg("path"), py::arg("parameters") = std::map<std::string, double>{},
       py::arg("output") = "res",
-      R"(Reads and compiles an R-function model file (.rf, docs/formats.md) -> Implicit.
-parameters override the model's `param` values, output names the variable (default res).
-InputError "FILE:LINE:COLUMN: ..." as `interlin eval` prints it.)");
+      R"(Reads a model file -> Implicit, by extension as `interlin eval` and `mesh` do: an
+R-function model (.rf, compiled; parameters override its `param` values, output names the
+variable, default res) or an implicit model file (.ifl: interlin.implicit() or `interlin
+implicit` wrote it; parameters and output must be left at their defaults).
+InputError "FILE:LINE: ..." as the CLI prints it.)");
   m.def(
       "parse_model",
       [options](const std::string& text, const std::string& name,

@@ -16,7 +16,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "interlin/interflatation/implicit_function.h"
 #include "interlin/reconstruction/io/mesh_io.h"
+#include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/loft/guided_loft.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -33,6 +36,16 @@ namespace py = pybind11;
 // (arguments are converted before, results after). Bodies that build Python objects release
 // the GIL in an inner scope (py::gil_scoped_release) instead.
 using release_gil = py::call_guard<py::gil_scoped_release>;
+
+// A Python callable kept by C++ objects that may be copied and destroyed on threads without the
+// GIL (the meshing workers): the last owner takes the GIL to release it.
+struct PythonCallable {
+  py::function f;
+  ~PythonCallable() {
+    py::gil_scoped_acquire gil;
+    f = py::function();
+  }
+};
 
 // Throws ValueError "NAME: expected an (N, COLS) array, got (R, C)" unless M has `cols` columns
 // (cols < 0: any) and at least `min_rows` rows.
@@ -80,13 +93,53 @@ E choice(const std::map<std::string, E>& names, const std::string& value, const 
 // one of them is a single value. ValueError otherwise. Index a single value with 0.
 std::vector<py::ssize_t> pair_shape(const DoubleArray& a, const DoubleArray& b, const char* names);
 
-void bind_splines(py::module_& m);        // bind_splines.cpp: B-splines, Theorems 1 and 2
-void bind_curves(py::module_& m);         // bind_curves.cpp: natural curves, cascade profiles
-void bind_interlineation(py::module_& m); // bind_interlineation.cpp: Coons, Hermite, Gordon
-void bind_rfunctions(py::module_& m);     // bind_rfunctions.cpp: interlin.rf, implicit bodies
-void bind_io(py::module_& m);             // bind_io.cpp: section/guide/points files, meshes
-void bind_loft(py::module_& m);           // bind_loft.cpp: surfaces, loft, hold-out
-void bind_meshing(py::module_& m);        // bind_meshing.cpp: implicit meshes, mesh checks
-void bind_clouds(py::module_& m);         // bind_clouds.cpp: point clouds, their implicits
+// An Implicit's values (N,) and (values, gradients (N, 3)) at points P (N, 3), in blocks, without
+// the GIL (bind_rfunctions.cpp).
+Eigen::VectorXd values_at(const ImplicitFunction& f, const DoubleArray& P);
+py::tuple gradients_at(const ImplicitFunction& f, const DoubleArray& P);
+
+// A struct's fields as a dict {name: value}: fields_dict(r, field("vertices", &R::vertices), ...).
+template <class S, class T>
+std::pair<const char*, T S::*> field(const char* name, T S::*member) {
+  return {name, member};
+}
+template <class S, class... T>
+py::dict fields_dict(const S& s, const std::pair<const char*, T S::*>&... fields) {
+  py::dict d;
+  ((d[fields.first] = s.*(fields.second)), ...);
+  return d;
+}
+
+// The path of a str or os.PathLike, else nullopt (bind_loft.cpp).
+std::optional<std::string> path_of(const py::handle& o);
+
+// Loft inputs as the CLI reads them: a path (str or os.PathLike), a SectionSet, or a list of
+// Section objects or (P, 3) arrays (ids "0", "1", ...). bind_loft.cpp.
+struct SectionsArg {
+  std::vector<Section> sections;
+  std::string path; // empty unless read from a file
+  std::vector<std::string> warnings;
+};
+SectionsArg sections_arg(const py::object& o);
+
+// The loft options of loft(), holdout() and implicit() (as `interlin loft`), and the guides.
+struct LoftArgs {
+  GuidedLoftOptions options;
+  std::optional<GuideSet> guides;
+};
+LoftArgs loft_args(int degree, const py::object& span_degree, const std::string& align,
+                   const std::string& match, const py::object& param, const std::string& span,
+                   const py::object& guides, double guide_tolerance);
+
+void bind_splines(py::module_& m);         // bind_splines.cpp: B-splines, Theorems 1 and 2
+void bind_curves(py::module_& m);          // bind_curves.cpp: natural curves, cascade profiles
+void bind_interlineation(py::module_& m);  // bind_interlineation.cpp: Coons, Hermite, Gordon
+void bind_rfunctions(py::module_& m);      // bind_rfunctions.cpp: interlin.rf, implicit bodies
+void bind_io(py::module_& m);              // bind_io.cpp: section/guide/points files, meshes
+void bind_loft(py::module_& m);            // bind_loft.cpp: surfaces, loft, hold-out
+void bind_meshing(py::module_& m);         // bind_meshing.cpp: implicit meshes, mesh checks
+void bind_clouds(py::module_& m);          // bind_clouds.cpp: point clouds, their implicits
+void bind_interflatation(py::module_& m);  // bind_interflatation.cpp: operators, tricubic grid
+void bind_implicit_models(py::module_& m); // bind_implicit.cpp: .ifl models, implicit()
 
 } // namespace interlin::python

@@ -70,4 +70,6 @@ PYBIND11_MODULE(_core, m) {
   bind_loft(m);
   bind_meshing(m);
   bind_clouds(m);
+  bind_interflatation(m);
+  bind_implicit_models(m);
 }
