@@ -16,7 +16,7 @@ Usage: python3 studies/interlineation_convergence.py [OUT_DIR] [--quick] [-q]   
 """
 import numpy as np
 
-from study import Study, arguments, fit_order, interlin, loglog, plt
+from study import Study, arguments, fit_order, interlin, label_axes, loglog, plt
 
 ROUND_OFF = 1e-13  # errors below this are round-off of O(1) values: left out of the fits
 
@@ -114,11 +114,7 @@ order is the least-squares slope of log(error) against log(h) from n = 4 on, ove
             table.append([m] + err[m] + [order])
             order_rows.append([fname, m, order])
             rows += [[fname, m, n, 1.0 / n, e] for n, e in zip(ns, err[m])]
-        ax.set_xlabel("h = 1/n")
-        ax.set_ylabel("max error on the sample")
-        ax.set_title("f = " + fname, fontsize=10)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
+        label_axes(ax, "h = 1/n", "max error on the sample", "f = " + fname)
         r.text("## f = %s" % fname)
         r.table("table_%d" % (k + 1), ["method"] + ["n = %d" % n for n in ns] + ["fitted order"],
                 table, digits=3)

@@ -114,6 +114,16 @@ def loglog(ax, h, e, label, floor=0.0, marker="o"):
     return order
 
 
+def label_axes(ax, xlabel, ylabel, title=None, legend_size=7):
+    """Axis labels, an optional title, a light log grid and the legend of a convergence plot."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=legend_size)
+
+
 def _atomic(path, write, mode="w"):
     d = os.path.dirname(path) or "."
     fd, tmp = tempfile.mkstemp(dir=d, suffix=os.path.splitext(path)[1])
