@@ -6,10 +6,13 @@
 // between stations, by project_to_surface for every surface (OCCT's evaluated by OCCT through
 // occt_parametric).
 //
-// Usage: blade_family [--cases N] [--csv FILE] [--check]
-//   prints a Markdown table per case and a summary; --csv writes one row per case and model
-//   (leave-one-out and between-section errors) for studying the choice rule; --check verifies
-//   the projections of the default and OCCT surfaces from a finer start grid.
+// Usage: blade_family [--cases N] [--family F] [--all-degrees] [--csv FILE] [--check]
+//   prints a Markdown table per case and a summary; --family F runs the fresh family F >= 1
+//   (analytic_blades.h: its own draws and section counts) instead of the reference family 0;
+//   --all-degrees adds the fixed options of every degree 2 to #sections - 1 (default 3, 5 and
+//   #sections - 1); --csv writes one row per case and model (leave-one-out and between-section
+//   errors) for studying the choice rule; --check verifies the projections of the default and
+//   OCCT surfaces from a finer start grid.
 
 #include "occt_loft.h"
 
@@ -65,7 +68,7 @@ double projection_excess(const Eigen::VectorXd& measured, const ParametricSurfac
   return (measured - project_to_surface(S, P, 2048, 512, 64).distance).maxCoeff();
 }
 
-int run(int cases, const char* csv_path, bool check) {
+int run(int cases, int family, bool all_degrees, const char* csv_path, bool check) {
   double excess = 0;
   for (Message_SequenceOfPrinters::Iterator it(Message::DefaultMessenger()->Printers()); it.More();
        it.Next())
@@ -77,7 +80,7 @@ int run(int cases, const char* csv_path, bool check) {
   std::printf("| case | default model | LOO max | between max / rms | / OCCT (max, rms) | / best "
               "fixed (max, rms) | best fixed |\n|---|---|---|---|---|---|---|\n");
   for (int i = 0; i < cases; ++i) {
-    const test::BladeCase c = test::blade_case(i);
+    const test::BladeCase c = test::blade_case(i, 120, family);
     const int K = static_cast<int>(c.sections.size());
     const LoftResult def = loft_sections(c.sections);
     std::vector<Row> rows;
@@ -90,8 +93,8 @@ int run(int cases, const char* csv_path, bool check) {
     }
     for (SpanParameters p : {SpanParameters::station, SpanParameters::chord,
                              SpanParameters::centripetal, SpanParameters::uniform})
-      for (int q : {3, 5, K - 1}) {
-        if (q > K - 1 || (q == K - 1 && (q == 3 || q == 5)) ||
+      for (int q = 2; q < K; ++q) {
+        if ((!all_degrees && q != 3 && q != 5 && q != K - 1) ||
             (p == SpanParameters::station && def.span.stations.stacking == Stacking::none))
           continue;
         LoftOptions o;
@@ -118,6 +121,7 @@ int run(int cases, const char* csv_path, bool check) {
                      r.span.loo_rms, r.between.max, r.between.rms);
       std::fprintf(csv, "%d,%d,%s,occt,,,%.6g,%.6g\n", i, K,
                    to_string(def.span.stations.stacking).c_str(), occt.max, occt.rms);
+      std::fflush(csv);
     }
     Error best{INFINITY, INFINITY};
     std::string best_name;
@@ -153,19 +157,23 @@ int run(int cases, const char* csv_path, bool check) {
 } // namespace
 
 int main(int argc, char** argv) {
-  int cases = test::kBladeCases;
+  int cases = test::kBladeCases, family = 0;
   const char* csv = nullptr;
-  bool check = false;
+  bool check = false, all_degrees = false;
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--check"))
       check = true;
+    else if (!std::strcmp(argv[a], "--all-degrees"))
+      all_degrees = true;
+    else if (!std::strcmp(argv[a], "--family") && a + 1 < argc)
+      family = std::atoi(argv[++a]);
     else if (!std::strcmp(argv[a], "--cases") && a + 1 < argc)
       cases = std::atoi(argv[++a]);
     else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc)
       csv = argv[++a];
   }
   try {
-    return run(cases, csv, check);
+    return run(cases, family, all_degrees, csv, check);
   } catch (const Standard_Failure& e) {
     std::fprintf(stderr, "blade_family: OpenCASCADE: %s\n", e.GetMessageString());
   } catch (const std::exception& e) {

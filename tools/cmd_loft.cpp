@@ -54,7 +54,8 @@ Options:
                              common normal; stream surfaces about z across the flow path),
                              chord = mean distance between neighbouring sections,
                              centripetal = its square root, uniform = equal steps;
-                             auto = chosen by leave-one-out cross-validation
+                             auto = station (if detected), chord or uniform, chosen
+                             by leave-one-out cross-validation
   --span-degree auto|Q       spline degree along the span (default auto: 3, 5 or
                              #sections-1 by leave-one-out; Q is reduced to #sections-1)
   --align first|le|te        section start: keep the first point (default), or start at

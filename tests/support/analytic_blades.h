@@ -31,7 +31,7 @@
 namespace interlin::test {
 
 enum class BladeStacking { planes, cylinders, cones };
-enum class BladeSpacing { even, cosine, hub };
+enum class BladeSpacing { even, cosine, hub, tip };
 
 // Span laws of one blade: functions of the span fraction s in [0, 1].
 struct BladeLaw {
@@ -78,14 +78,16 @@ inline Eigen::VectorXd blade_angles(Eigen::Index n, double clustering) {
   return t;
 }
 
-// K stations in [0, 1].
+// K stations in [0, 1]: even, cosine-clustered at both ends, clustered at the hub (s = 0) or at
+// the tip (s = 1).
 inline std::vector<double> blade_stations(int K, BladeSpacing spacing) {
   std::vector<double> s;
   for (int k = 0; k < K; ++k) {
     const double f = static_cast<double>(k) / (K - 1);
     s.push_back(spacing == BladeSpacing::even     ? f
                 : spacing == BladeSpacing::cosine ? 0.5 * (1 - std::cos(M_PI * f))
-                                                  : 1 - std::cos(0.5 * M_PI * f)); // hub
+                : spacing == BladeSpacing::hub    ? 1 - std::cos(0.5 * M_PI * f)
+                                                  : std::sin(0.5 * M_PI * f)); // tip
   }
   return s;
 }
@@ -173,18 +175,25 @@ inline BladeLaw blade_law(int which, Coefficients& r) {
   }
 }
 
-// The case `index` of the family: law index % 6, stacking, spacing and section count from the
+// The case `index` of a family: law index % 6, stacking, spacing and section count from the
 // index, coefficients, point counts (40 to 140) and clustering (-0.35 to 0.15) drawn per case.
-// `between` holds `samples` true points at the middle of each gap.
-inline BladeCase blade_case(int index, int samples = 120) {
-  static const std::array<int, 3> counts = {5, 7, 10};
-  static const std::array<BladeSpacing, 3> spacings = {BladeSpacing::even, BladeSpacing::cosine,
-                                                       BladeSpacing::hub};
+// Family 0 is the reference family (kBladeCases cases, 5, 7 or 10 sections, even, cosine or hub
+// spacing); a family f >= 1 is a fresh one for checks on blades a rule was not tuned on: its
+// own draws (seed 1000 f + index + 1), 6, 8 or 9 sections, and tip instead of hub clustering for
+// even f. `between` holds `samples` true points at the middle of each gap.
+inline BladeCase blade_case(int index, int samples = 120, int family = 0) {
+  const std::array<int, 3> counts =
+      family == 0 ? std::array<int, 3>{5, 7, 10} : std::array<int, 3>{6, 8, 9};
+  const BladeSpacing clustered =
+      family > 0 && family % 2 == 0 ? BladeSpacing::tip : BladeSpacing::hub;
+  const std::array<BladeSpacing, 3> spacings = {BladeSpacing::even, BladeSpacing::cosine,
+                                                clustered};
   static const std::array<BladeStacking, 3> stackings = {
       BladeStacking::planes, BladeStacking::cylinders, BladeStacking::cones};
-  static const char* const spacing_names[] = {"even", "cosine", "hub"};
+  const char* const spacing_names[] = {"even", "cosine",
+                                       clustered == BladeSpacing::hub ? "hub" : "tip"};
   static const char* const stacking_names[] = {"planes", "cylinders", "cones"};
-  Coefficients r(static_cast<std::uint64_t>(index) + 1);
+  Coefficients r(static_cast<std::uint64_t>(1000 * family + index) + 1);
   BladeCase c;
   const int spacing = (index / 6) % 3, K = counts[static_cast<size_t>((index / 18) % 3)];
   const int stacking = (index + index / 6) % 3;

@@ -12,7 +12,7 @@
 namespace interlin::detail {
 
 // The candidates for the options, in order of preference: parameters o.span, or (automatic)
-// station when the stack has stations, then chord, then centripetal; degree o.span_degree, or
+// station when the stack has stations, then chord, then uniform; degree o.span_degree, or
 // (automatic) 3, 5 and #sections - 1 (at most kMaxAutoSpanDegree), each reduced to
 // #sections - 1, duplicates dropped. Throws std::invalid_argument for span = station on a stack
 // without stations, naming the measured spread.

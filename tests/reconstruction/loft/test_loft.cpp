@@ -109,9 +109,11 @@ TEST_CASE("Rotor 37 hold-out (every second section withheld) matches the recorde
           "[loft][holdout]") {
   const HoldoutResult r = holdout_study(rotor37(), withheld_every(13, 2));
   REQUIRE(r.test == std::vector<size_t>({1, 3, 5, 7, 9, 11}));
-  // Values of docs/benchmarks.md (centripetal span parameters, index correspondence); the
-  // OpenCASCADE ThruSections loft of the same 7 sections gives max 0.0199, rms 0.0054.
-  CHECK(r.max == Approx(0.01915).margin(5e-5));
-  CHECK(r.rms == Approx(0.00565).margin(5e-5));
+  // Values of docs/benchmarks.md (the 7 sections' span model by leave-one-out: uniform cubic;
+  // index correspondence); the OpenCASCADE ThruSections loft of the same 7 sections gives max
+  // 0.0199, rms 0.0054. Every fixed span model lies within max 0.0190 to 0.0195 and rms 0.0055
+  // to 0.0063 here (the data's own section-to-section irregularity, docs/benchmarks.md).
+  CHECK(r.max == Approx(0.01899).margin(5e-5));
+  CHECK(r.rms == Approx(0.006315).margin(5e-5));
   CHECK(r.max < 0.0199);
 }

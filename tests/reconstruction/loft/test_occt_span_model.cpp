@@ -9,12 +9,12 @@
 //
 // Bounds: the per-case targets of issue 9 (at most 1.0 x OCCT in max and rms on every blade,
 // within 10 % of every fixed option) are not reachable by any choice among the span options on
-// this family: on 7 blades OCCT beats every one of the 12 fixed options, and leave-one-out cannot
-// tell degree #sections-1 from #sections-2 (docs/benchmarks.md, "Spanwise model on analytic
-// blades", has the table of one run of bench/blade_family). What is asserted is what the
-// measurement supports, with margin: exact on every input section, never far worse than OCCT,
-// better than OCCT on most blades and much better on the geometric mean, and better than the
-// previous fixed default (centripetal, cubic) on the geometric mean.
+// this family: on 11 of the 54 blades OCCT beats every one of the 12 fixed options in max or
+// rms, and on 14 no option meets both targets at once (docs/benchmarks.md, "Spanwise model on
+// analytic blades", has the table of one run of bench/blade_family and the evidence). What is
+// asserted is what one run measured on these 36 blades, with the margin stated at each bound:
+// exact on every input section, the worst ratio to OCCT, the number of blades at or below OCCT,
+// the geometric means against OCCT and against the previous fixed default (centripetal, cubic).
 
 #include "occt_loft.h"
 
@@ -92,9 +92,10 @@ TEST_CASE("Analytic blade family: the default span model against OpenCASCADE Thr
     const double ratio = std::max(d.max / o.max, d.rms / o.rms);
     INFO("default " << to_string(r.span.used.parameters) << " " << r.span.used.degree << ": max "
                     << d.max << " rms " << d.rms << "; OCCT max " << o.max << " rms " << o.rms);
-    // Measured worst 1.76 (blade #35: a tie between degrees 5 and 6 that leave-one-out cannot
-    // break); 2 leaves room for platform round-off in the choice, not for a worse method.
-    CHECK(ratio <= 2.0);
+    // Measured worst 1.87 (blade #35: a tie between degrees 5 and 6 that leave-one-out cannot
+    // break; OCCT's degree-6 polynomial is closer); 1.9 leaves room for round-off, not for a
+    // worse choice.
+    CHECK(ratio <= 1.9);
     better_than_occt += ratio <= 1.0;
     vs_occt.push_back(ratio);
     vs_previous.push_back(std::max(d.max / p.max, d.rms / p.rms));
@@ -105,12 +106,14 @@ TEST_CASE("Analytic blade family: the default span model against OpenCASCADE Thr
       s += std::log(v);
     return std::exp(s / static_cast<double>(x.size()));
   };
-  // Measured on these 36 blades: 24 at or below OCCT in both max and rms, geometric mean of the
-  // worse of the two ratios 0.43; against the previous default (centripetal, cubic) 0.56
-  // (bench/blade_family on all 54: 40, 0.44 and 0.55).
+  // Measured on these 36 blades (station, chord or uniform by leave-one-out): 24 at or below OCCT
+  // in both max and rms, geometric mean of the worse of the two ratios 0.416; against the
+  // previous default (centripetal, cubic) 0.544 (bench/blade_family on all 54: 40, 0.431 and
+  // 0.543). The counts are exact on this platform (the choice is deterministic); the means get
+  // 2 % for round-off in the distances.
   if (kSanitized)
     return;
-  CHECK(better_than_occt >= 22);
-  CHECK(geometric_mean(vs_occt) <= 0.5);
-  CHECK(geometric_mean(vs_previous) <= 0.65);
+  CHECK(better_than_occt >= 24);
+  CHECK(geometric_mean(vs_occt) <= 0.425);
+  CHECK(geometric_mean(vs_previous) <= 0.555);
 }
