@@ -95,4 +95,24 @@ Eigen::AlignedBox3d box_from_block(const IflBlock& b, const std::string& name) {
   return Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
 }
 
+bool valid_band(double inner, double outer) {
+  return inner > 0 && outer > inner;
+}
+
+void set_band(IflBlock& b, const IflBand& band) {
+  set_box(b, "box", band.box);
+  b.set("band_inner", band.inner);
+  b.set("band_outer", band.outer);
+}
+
+IflBand band_from_block(const IflBlock& b) {
+  IflBand band;
+  band.box = box_from_block(b, "box");
+  band.inner = b.number("band_inner");
+  band.outer = b.number("band_outer");
+  if (!valid_band(band.inner, band.outer))
+    b.fail("the band needs 0 < band_inner < band_outer");
+  return band;
+}
+
 } // namespace interlin

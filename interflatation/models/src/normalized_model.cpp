@@ -118,7 +118,7 @@ void evaluate_batch(const State& s, const Eigen::Ref<const Points3>& P, Eigen::R
 } // namespace
 
 ImplicitFunction normalized_model_function(const NormalizedModel& m) {
-  if (!(m.band_inner > 0 && m.band_outer > m.band_inner))
+  if (!valid_band(m.band_inner, m.band_outer))
     throw std::invalid_argument("normalized model: the band needs 0 < inner < outer");
   if (static_cast<long>(m.grid.values.size()) !=
       static_cast<long>(m.grid.n(0)) * m.grid.n(1) * m.grid.n(2))
@@ -146,9 +146,7 @@ IflBlock to_ifl(const NormalizedModel& m) {
   b.kind = "normalized_rf";
   b.name = "model";
   b.set("version", 1);
-  set_box(b, "box", m.box);
-  b.set("band_inner", m.band_inner);
-  b.set("band_outer", m.band_outer);
+  set_band(b, {m.box, m.band_inner, m.band_outer});
   b.set_text("source", m.source);
   b.set_text("path", m.path);
   b.set_text("output", m.options.output);
@@ -167,11 +165,10 @@ NormalizedModel normalized_model_from_ifl(const IflBlock& b) {
     b.fail("expected a normalized_rf block");
   b.integer("version", 1, 1);
   NormalizedModel m;
-  m.box = box_from_block(b, "box");
-  m.band_inner = b.number("band_inner");
-  m.band_outer = b.number("band_outer");
-  if (!(m.band_inner > 0 && m.band_outer > m.band_inner))
-    b.fail("the band needs 0 < band_inner < band_outer");
+  const IflBand band = band_from_block(b);
+  m.box = band.box;
+  m.band_inner = band.inner;
+  m.band_outer = band.outer;
   m.source = b.text("source");
   m.path = b.text("path");
   m.options.output = b.text("output");

@@ -48,7 +48,7 @@ void check_model(const SectionBodyModel& m) {
   for (const PatchSeed& s : m.seeds)
     if (s.patch < 0 || s.patch > 2 || !std::isfinite(s.u) || !std::isfinite(s.v))
       throw std::invalid_argument("section body: a seed names no patch");
-  if (!(m.band_inner > 0 && m.band_outer > m.band_inner))
+  if (!valid_band(m.band_inner, m.band_outer))
     throw std::invalid_argument("section body: the band needs 0 < inner < outer");
   if (m.box.isEmpty())
     throw std::invalid_argument("section body: empty box");
@@ -131,10 +131,8 @@ IflBlock to_ifl(const SectionBodyModel& m) {
   b.kind = "section_body";
   b.name = "model";
   b.set("version", 1);
-  set_box(b, "box", m.box);
+  set_band(b, {m.box, m.band_inner, m.band_outer});
   b.set_f64("edge_u", {2, 2}, {m.edge_u[0](0), m.edge_u[0](1), m.edge_u[1](0), m.edge_u[1](1)});
-  b.set("band_inner", m.band_inner);
-  b.set("band_outer", m.band_outer);
   b.set_i64("band_cells", {static_cast<long>(m.band_cells.size())}, m.band_cells);
   b.set_i64("band_start", {static_cast<long>(m.band_start.size())}, m.band_start);
   std::vector<std::int64_t> patch(m.seeds.size());
@@ -157,11 +155,12 @@ SectionBodyModel section_body_from_ifl(const IflBlock& b) {
     b.fail("expected a section_body block");
   b.integer("version", 1, 1);
   SectionBodyModel m;
-  m.box = box_from_block(b, "box");
+  const IflBand band = band_from_block(b);
+  m.box = band.box;
+  m.band_inner = band.inner;
+  m.band_outer = band.outer;
   const std::vector<double>& e = b.f64("edge_u", {2, 2});
   m.edge_u = {Eigen::Vector2d(e[0], e[1]), Eigen::Vector2d(e[2], e[3])};
-  m.band_inner = b.number("band_inner");
-  m.band_outer = b.number("band_outer");
   m.side = surface_from_block(b.block("side"));
   m.grid = grid_from_block(b.block("distance"));
   m.band_cells = b.i64("band_cells", {-1});

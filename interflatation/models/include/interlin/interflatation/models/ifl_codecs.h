@@ -34,4 +34,14 @@ NodeGrid grid_from_block(const IflBlock& b);
 void set_box(IflBlock& b, const std::string& name, const Eigen::AlignedBox3d& box);
 Eigen::AlignedBox3d box_from_block(const IflBlock& b, const std::string& name);
 
+// The box and blend band of a model (section_body, normalized_rf): array box (set_box), numbers
+// band_inner, band_outer with 0 < inner < outer (valid_band).
+struct IflBand {
+  Eigen::AlignedBox3d box;
+  double inner = 0, outer = 0;
+};
+bool valid_band(double inner, double outer);
+void set_band(IflBlock& b, const IflBand& band);
+IflBand band_from_block(const IflBlock& b);
+
 } // namespace interlin
