@@ -223,7 +223,7 @@ RegionInterlineation region_interlineation(const PlaneBoundary& boundary, const 
   return O;
 }
 
-double evaluate(const RegionInterlineation& O, const Vector2d& p) {
+bool piece_frame(const RegionInterlineation& O, const Vector2d& p, PieceFrame& f) {
   const auto cell = [](const Eigen::VectorXd& v, double s) -> Eigen::Index {
     if (!(s >= v(0) && s <= v(v.size() - 1)))
       return -1;
@@ -232,7 +232,7 @@ double evaluate(const RegionInterlineation& O, const Vector2d& p) {
   };
   const Eigen::Index i = cell(O.x, p(0)), j = cell(O.y, p(1));
   if (i < 0 || j < 0)
-    return 0;
+    return false;
   const std::vector<CellPiece>& pieces = O.pieces[static_cast<size_t>(i + (O.x.size() - 1) * j)];
   for (const CellPiece& pc : pieces) {
     const int m = pc.mapping_axis, q = 1 - m;
@@ -246,20 +246,39 @@ double evaluate(const RegionInterlineation& O, const Vector2d& p) {
     if (k >= at.size() || !(at[k].lo <= p(m) && p(m) <= at[k].hi))
       continue;
     const Clipped& c = at[k];
-    const double t = (p(m) - c.lo) / (c.hi - c.lo), s = (p(q) - pc.a) / (pc.b - pc.a);
-    // Side traces L (at a), R (at b) on their chords; grid-line traces B (at lo), T (at hi).
-    const Side L = side_chord(O, pc, false, y0, y1), R = side_chord(O, pc, true, y0, y1);
-    const auto side = [&](const Side& sd, double c_side, double tt) {
-      return sd.apex ? 0.0 : line_trace(O, q, c_side, sd.lo + tt * (sd.hi - sd.lo));
-    };
-    const double L0 = side(L, pc.a, 0), L1 = side(L, pc.a, 1), Lt = side(L, pc.a, t);
-    const double R0 = side(R, pc.b, 0), R1 = side(R, pc.b, 1), Rt = side(R, pc.b, t);
-    const double B = c.lo_grid ? line_trace(O, m, y0, p(q)) : 0.0;
-    const double T = c.hi_grid ? line_trace(O, m, y1, p(q)) : 0.0;
-    return (1 - s) * Lt + s * Rt + (1 - t) * B + t * T -
-           ((1 - s) * (1 - t) * L0 + s * (1 - t) * R0 + (1 - s) * t * L1 + s * t * R1);
+    f.piece = pc;
+    f.y0 = y0;
+    f.y1 = y1;
+    f.t = (p(m) - c.lo) / (c.hi - c.lo);
+    f.s = (p(q) - pc.a) / (pc.b - pc.a);
+    f.chord = {false, c.lo, c.hi, c.lo_grid, c.hi_grid};
+    for (const bool right : {false, true}) {
+      const Side sd = side_chord(O, pc, right, y0, y1);
+      f.side[right ? 1 : 0] = {sd.apex, sd.lo, sd.hi, true, true};
+    }
+    return true;
   }
-  return 0;
+  return false;
+}
+
+double evaluate(const RegionInterlineation& O, const Vector2d& p) {
+  PieceFrame f;
+  if (!piece_frame(O, p, f))
+    return 0;
+  const CellPiece& pc = f.piece;
+  const int m = pc.mapping_axis, q = 1 - m;
+  const double s = f.s, t = f.t;
+  // Side traces L (at a), R (at b) on their chords; grid-line traces B (at lo), T (at hi).
+  const auto side = [&](int k, double tt) {
+    const PieceFrame::Chord& sd = f.side[static_cast<size_t>(k)];
+    return sd.apex ? 0.0 : line_trace(O, q, k == 0 ? pc.a : pc.b, sd.lo + tt * (sd.hi - sd.lo));
+  };
+  const double L0 = side(0, 0), L1 = side(0, 1), Lt = side(0, t);
+  const double R0 = side(1, 0), R1 = side(1, 1), Rt = side(1, t);
+  const double B = f.chord.lo_grid ? line_trace(O, m, f.y0, p(q)) : 0.0;
+  const double T = f.chord.hi_grid ? line_trace(O, m, f.y1, p(q)) : 0.0;
+  return (1 - s) * Lt + s * Rt + (1 - t) * B + t * T -
+         ((1 - s) * (1 - t) * L0 + s * (1 - t) * R0 + (1 - s) * t * L1 + s * t * R1);
 }
 
 } // namespace interlin

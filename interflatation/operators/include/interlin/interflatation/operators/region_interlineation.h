@@ -31,6 +31,7 @@
 #include "interlin/interflatation/operators/plane_boundary.h"
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -81,6 +82,28 @@ RegionInterlineation region_interlineation(const PlaneBoundary& boundary, const 
 
 // Ou at p (0 outside G and outside the grid).
 double evaluate(const RegionInterlineation& O, const Eigen::Vector2d& p);
+
+// Where p lies in its piece (the mapped frame of the Coons formula above):
+//   piece          the piece holding p; q = 1 - piece.mapping_axis is the piece axis
+//   y0, y1         the cell's range along the mapping axis
+//   s, t           p's mapped coordinates in [0, 1]^2
+//   chord          p's chord [lo, hi] on the line {p(q) = p(q)} and whether its ends are grid lines
+//   side[0], [1]   the chords of the piece's sides p(q) = a and p(q) = b; apex when the side
+//                  shrinks to a point
+// False when p is outside G or outside the grid. Used by the 3-D operators (Theorem 5) to
+// parametrise cross-sections of their cells.
+struct PieceFrame {
+  struct Chord {
+    bool apex = false;
+    double lo = 0, hi = 0;
+    bool lo_grid = true, hi_grid = true;
+  };
+  CellPiece piece;
+  double y0 = 0, y1 = 0, s = 0, t = 0;
+  Chord chord;
+  std::array<Chord, 2> side;
+};
+bool piece_frame(const RegionInterlineation& O, const Eigen::Vector2d& p, PieceFrame& frame);
 
 // The trace of line {p(axis) = c} at the point whose other coordinate is s: u minus the linear
 // interpolant of u at the ends of the chord holding s (0 off the chords).
