@@ -81,14 +81,15 @@ struct State {
 };
 
 double evaluate_point(const State& s, const Vector3d& p, Vector3d& g) {
+  const auto [seeds, count] = s.starts(p);
+  const BodyDistance d = count > 0 ? body_distance(s.patches, p, seeds, count) : BodyDistance{};
+  // Within the inner band omega is the near field alone (blend weight 1): no far field needed.
+  if (d.found && std::abs(d.distance) <= s.model.band_inner) {
+    g = d.gradient;
+    return d.distance;
+  }
   Vector3d gf;
   const double f = detail::far_field(s.far, p, gf);
-  const auto [seeds, count] = s.starts(p);
-  if (count == 0) {
-    g = gf;
-    return f;
-  }
-  const BodyDistance d = body_distance(s.patches, p, seeds, count);
   if (!d.found) {
     g = gf;
     return f;

@@ -70,6 +70,33 @@ Structure structure_of(const std::vector<Chord>& ch) {
   return s;
 }
 
+int fewest_structures_axis(const SolidBoundary& b, const std::array<Eigen::VectorXd, 3>& nodes,
+                           const std::array<Eigen::Index, 3>& index);
+
+} // namespace
+
+struct SolidInterflatation::Cache {
+  std::mutex mutex;
+  std::map<size_t, int> mapping;
+  std::map<std::pair<size_t, Structure>, std::shared_ptr<const RegionInterlineation>> sections;
+};
+
+namespace {
+
+int mapping_of(const SolidInterflatation& O, size_t id, const std::array<Eigen::Index, 3>& index) {
+  if (O.mapping_axis >= 0)
+    return O.mapping_axis;
+  {
+    const std::lock_guard<std::mutex> lock(O.cache->mutex);
+    const auto it = O.cache->mapping.find(id);
+    if (it != O.cache->mapping.end())
+      return it->second;
+  }
+  const int m = fewest_structures_axis(O.boundary, O.nodes, index);
+  const std::lock_guard<std::mutex> lock(O.cache->mutex);
+  return O.cache->mapping.emplace(id, m).first->second;
+}
+
 // A cell and the frame of its mapping axis.
 struct CellFrame {
   std::array<Eigen::Index, 3> index{};
@@ -94,7 +121,7 @@ bool locate(const SolidInterflatation& O, const Vector3d& p, CellFrame& f) {
   }
   const Eigen::Index nx = O.nodes[0].size() - 1, ny = O.nodes[1].size() - 1;
   f.id = static_cast<size_t>(f.index[0] + nx * (f.index[1] + ny * f.index[2]));
-  f.m = O.mapping[f.id];
+  f.m = mapping_of(O, f.id, f.index);
   const auto range = [&](int a) {
     const Eigen::Index i = f.index[static_cast<size_t>(a)];
     return std::make_pair(O.nodes[static_cast<size_t>(a)](i),
@@ -123,14 +150,6 @@ RegionInterlineation cross_section(const SolidBoundary& b, const CellFrame& f, c
       D, x, y, [](const Vector2d&) { return 0.0; }, samples);
 }
 
-} // namespace
-
-struct SolidInterflatation::Cache {
-  std::mutex mutex;
-  std::map<std::pair<size_t, Structure>, std::shared_ptr<const RegionInterlineation>> sections;
-};
-
-namespace {
 
 std::shared_ptr<const RegionInterlineation> section_of(const SolidInterflatation& O,
                                                        const CellFrame& f, const Structure& s) {
@@ -244,6 +263,8 @@ int fewest_structures_axis(const SolidBoundary& b, const std::array<Eigen::Vecto
       best = m;
       best_count = seen.size();
     }
+    if (best_count == 1) // one structure: the cell is a box or a curved box along m
+      break;
   }
   return best;
 }
@@ -311,12 +332,8 @@ SolidInterflatation solid_interflatation(const SolidBoundary& boundary,
   O.nodes = nodes;
   O.u = std::move(u);
   O.samples = samples;
+  O.mapping_axis = mapping_axis;
   O.cache = std::make_shared<SolidInterflatation::Cache>();
-  for (Eigen::Index k = 0; k + 1 < nodes[2].size(); ++k)
-    for (Eigen::Index j = 0; j + 1 < nodes[1].size(); ++j)
-      for (Eigen::Index i = 0; i + 1 < nodes[0].size(); ++i)
-        O.mapping.push_back(mapping_axis >= 0 ? mapping_axis
-                                              : fewest_structures_axis(boundary, nodes, {i, j, k}));
   return O;
 }
 

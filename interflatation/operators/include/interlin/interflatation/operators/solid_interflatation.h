@@ -64,10 +64,11 @@ struct SolidInterflatation {
   SolidBoundary boundary;
   std::array<Eigen::VectorXd, 3> nodes;
   std::function<double(const Eigen::Vector3d&)> u;
-  // Per cell (i + (#x - 1) (j + (#y - 1) k)), its mapping axis.
-  std::vector<int> mapping;
+  // The mapping axis of every cell, or -1: per cell, chosen on first use.
+  int mapping_axis = -1;
   int samples = 12;
-  // The cross-sections D of the pieces, built on first use (shared by copies; thread-safe).
+  // The cells' mapping axes and the cross-sections D of the pieces, found on first use (shared
+  // by copies; thread-safe).
   struct Cache;
   std::shared_ptr<Cache> cache;
 };
