@@ -1,6 +1,8 @@
 // Chords of axis-parallel lines in plane regions (operators/plane_boundary.h).
 #include "interlin/interflatation/operators/plane_boundary.h"
 
+#include "sign_runs.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -34,37 +36,14 @@ PlaneBoundary implicit_boundary(std::function<double(const Vector2d&)> g,
   b.box = box;
   b.chords = [g = std::move(g), box, samples](int axis, double c) {
     const int other = 1 - axis;
-    const double lo = box.min()(other), hi = box.max()(other);
-    auto at = [&](double s) {
-      Vector2d p;
-      p(axis) = c;
-      p(other) = s;
-      return g(p);
-    };
-    // The end of a run between s0 (inside when `inside0`) and s1, by bisection.
-    auto refine = [&](double s0, double s1, bool inside0) {
-      for (int k = 0; k < kBisections; ++k) {
-        const double m = 0.5 * (s0 + s1);
-        ((at(m) > 0) == inside0 ? s0 : s1) = m;
-      }
-      return inside0 ? s0 : s1;
-    };
-    std::vector<double> out;
-    double prev_s = lo;
-    bool prev_in = at(lo) > 0;
-    if (prev_in)
-      out.push_back(lo);
-    for (int i = 1; i < samples; ++i) {
-      const double s = lo + (hi - lo) * i / (samples - 1);
-      const bool in = at(s) > 0;
-      if (in != prev_in)
-        out.push_back(refine(prev_s, s, prev_in));
-      prev_s = s;
-      prev_in = in;
-    }
-    if (prev_in)
-      out.push_back(hi);
-    return out;
+    Vector2d p;
+    p(axis) = c;
+    return detail::sign_runs(
+        [&](double s) {
+          p(other) = s;
+          return g(p) > 0;
+        },
+        box.min()(other), box.max()(other), samples);
   };
   return b;
 }

@@ -3,6 +3,7 @@
 #include "interlin/interflatation/operators/solid_interflatation.h"
 
 #include "interlin/interflatation/operators/region_interlineation.h"
+#include "sign_runs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,8 +19,6 @@ using Eigen::Vector3d;
 
 namespace {
 
-// Bisection steps: 2^-60 of a sample spacing is below round-off for any cell.
-constexpr int kBisections = 60;
 // Chord ends closer than this (relative to the cell) to a plane are on the plane; chords shorter
 // are points of dG.
 constexpr double kRelativeTolerance = 1e-12;
@@ -150,7 +149,6 @@ RegionInterlineation cross_section(const SolidBoundary& b, const CellFrame& f, c
       D, x, y, [](const Vector2d&) { return 0.0; }, samples);
 }
 
-
 std::shared_ptr<const RegionInterlineation> section_of(const SolidInterflatation& O,
                                                        const CellFrame& f, const Structure& s) {
   const auto key = std::make_pair(f.id, s);
@@ -279,34 +277,12 @@ SolidBoundary implicit_solid(std::function<double(const Vector3d&)> g,
   b.box = box;
   b.chords = [g = std::move(g), samples](int axis, const Vector3d& p, double lo, double hi) {
     Vector3d x = p;
-    const auto inside = [&](double s) {
-      x(axis) = s;
-      return g(x) > 0;
-    };
-    // The end of a run between s0 (inside when `in0`) and s1, by bisection.
-    const auto refine = [&](double s0, double s1, bool in0) {
-      for (int k = 0; k < kBisections; ++k) {
-        const double mid = 0.5 * (s0 + s1);
-        (inside(mid) == in0 ? s0 : s1) = mid;
-      }
-      return in0 ? s0 : s1;
-    };
-    std::vector<double> out;
-    double prev = lo;
-    bool prev_in = inside(lo);
-    if (prev_in)
-      out.push_back(lo);
-    for (int i = 1; i < samples; ++i) {
-      const double s = i + 1 == samples ? hi : lo + (hi - lo) * i / (samples - 1);
-      const bool in = inside(s);
-      if (in != prev_in)
-        out.push_back(refine(prev, s, prev_in));
-      prev = s;
-      prev_in = in;
-    }
-    if (prev_in)
-      out.push_back(hi);
-    return out;
+    return detail::sign_runs(
+        [&](double s) {
+          x(axis) = s;
+          return g(x) > 0;
+        },
+        lo, hi, samples);
   };
   return b;
 }
