@@ -8,6 +8,7 @@
 #include "interlin/interflatation/rfunctions/r_operations.h"
 #include "interlin/interlineation/coons_hermite.h"
 #include "interlin/splines/closed_section_curve.h"
+#include "support/test_support.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -340,17 +341,7 @@ TEST_CASE("Theorem 4 convergence: max |Ou - d| near the circle, C0, fitted order
     h.push_back(v(1) - v(0));
     e.push_back(worst);
   }
-  // Least-squares slope of log e against log h.
-  double mh = 0, me = 0, shh = 0, she = 0;
-  for (size_t k = 0; k < 3; ++k) {
-    mh += std::log(h[k]) / 3;
-    me += std::log(e[k]) / 3;
-  }
-  for (size_t k = 0; k < 3; ++k) {
-    shh += (std::log(h[k]) - mh) * (std::log(h[k]) - mh);
-    she += (std::log(h[k]) - mh) * (std::log(e[k]) - me);
-  }
-  const double order = she / shh;
+  const double order = test::fitted_order(h, e);
   INFO("errors " << e[0] << " " << e[1] << " " << e[2] << " order " << order);
   CHECK(order >= 1.7);
 }

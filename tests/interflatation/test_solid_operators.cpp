@@ -8,6 +8,7 @@
 #include "interlin/interflatation/operators/free_traces.h"
 #include "interlin/interflatation/operators/grid_interflatation.h"
 #include "interlin/interflatation/operators/solid_interflatation.h"
+#include "support/test_support.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -26,21 +27,6 @@ Eigen::VectorXd planes(std::initializer_list<double> v) {
   for (double x : v)
     r(i++) = x;
   return r;
-}
-
-// Least-squares slope of log e against log h.
-double fitted_order(const std::vector<double>& h, const std::vector<double>& e) {
-  const double n = static_cast<double>(h.size());
-  double mh = 0, me = 0, shh = 0, she = 0;
-  for (size_t k = 0; k < h.size(); ++k) {
-    mh += std::log(h[k]) / n;
-    me += std::log(e[k]) / n;
-  }
-  for (size_t k = 0; k < h.size(); ++k) {
-    shh += (std::log(h[k]) - mh) * (std::log(h[k]) - mh);
-    she += (std::log(h[k]) - mh) * (std::log(e[k]) - me);
-  }
-  return she / shh;
 }
 
 const Eigen::AlignedBox3d unit_cube(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
@@ -221,7 +207,7 @@ TEST_CASE("Theorem 5 convergence: max |Ou - d| near a sphere, fitted order",
     h.push_back(v(1) - v(0));
     e.push_back(worst);
   }
-  const double order = fitted_order(h, e);
+  const double order = test::fitted_order(h, e);
   INFO("errors " << e[0] << " " << e[1] << " " << e[2] << " order " << order);
   CHECK(order >= 1.7);
 }
@@ -347,7 +333,7 @@ TEST_CASE("Body equation convergence on a torus: C0 (Theorem 5) and C2 (tricubic
     h2.push_back(h);
     e2.push_back(worst);
   }
-  const double order0 = fitted_order(h0, e0), order2 = fitted_order(h2, e2);
+  const double order0 = test::fitted_order(h0, e0), order2 = test::fitted_order(h2, e2);
   INFO("C0 errors " << e0[0] << " " << e0[1] << " " << e0[2] << " " << e0[3] << " order " << order0
                     << "; C2 errors " << e2[0] << " " << e2[1] << " " << e2[2] << " order "
                     << order2);
