@@ -174,6 +174,27 @@ double section_gap(const std::vector<FittedSection>& sections,
 
 } // namespace
 
+std::vector<Section> fitted_sections(const std::vector<FittedSection>& fitted) {
+  std::vector<Section> sections;
+  for (size_t k = 0; k < fitted.size(); ++k) {
+    Section s;
+    s.id = std::to_string(k + 1);
+    s.points = fitted[k].section;
+    s.lines.resize(size_t(s.points.rows()));
+    for (size_t i = 0; i < s.lines.size(); ++i)
+      s.lines[i] = long(i) + 1;
+    sections.push_back(std::move(s));
+  }
+  return sections;
+}
+
+LoftOptions sliced_scan_loft_options() {
+  LoftOptions lo;
+  lo.align = StartAlign::leading_edge;
+  lo.match = Correspondence::arc_length;
+  return lo;
+}
+
 SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
                           const SliceFitOptions& options) {
   if (family.kind != SliceKind::planar && family.kind != SliceKind::radial)
@@ -183,25 +204,14 @@ SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
   SlicedFit r;
   r.family = family;
   r.noise = options.noise > 0 ? options.noise : family.spread;
-  std::vector<Section> sections;
   std::vector<SliceFrame> frames;
   for (size_t k = 0; k < family.members.size(); ++k) {
     frames.emplace_back(family, family.stations[k], P, family.members[k]);
     r.sections.push_back(fit_slice(P, family, k, r.noise, options.samples, frames.back()));
-    Section s;
-    s.id = std::to_string(k + 1);
-    s.points = r.sections.back().section;
-    s.lines.resize(size_t(s.points.rows()));
-    for (size_t i = 0; i < s.lines.size(); ++i)
-      s.lines[i] = long(i) + 1;
-    sections.push_back(std::move(s));
   }
   if (options.progress)
-    options.progress("fitted " + std::to_string(sections.size()) + " sections");
-  LoftOptions lo;
-  lo.align = StartAlign::leading_edge;
-  lo.match = Correspondence::arc_length;
-  r.loft = loft_sections(sections, lo);
+    options.progress("fitted " + std::to_string(r.sections.size()) + " sections");
+  r.loft = loft_sections(fitted_sections(r.sections), sliced_scan_loft_options());
   r.section_gap = section_gap(r.sections, frames, r.loft);
   if (options.progress)
     options.progress("lofted; fitted sections to the loft: " + std::to_string(r.section_gap));

@@ -18,35 +18,48 @@ constexpr double kOrientedDisagreement = 0.01;
 
 } // namespace
 
-PointCloud prepare_cloud(const std::string& path, const PointCloud& cloud,
-                         const CloudPrepOptions& o, CloudPrepReport* report_out,
-                         std::vector<std::string>* notes) {
+namespace {
+
+void check_options(const CloudPrepOptions& o) {
   if (o.outlier_neighbours < 0 || !(o.outlier_ratio > 0) || !(o.voxel >= 0) ||
       o.normal_neighbours < 3 || o.orient_neighbours < 1)
     throw std::invalid_argument("prepare_cloud: bad options");
-  auto say = [&](const std::string& s) {
-    if (o.progress)
-      o.progress(s);
-  };
-  CloudPrepReport r;
+}
+
+void say(const CloudPrepOptions& o, const std::string& s) {
+  if (o.progress)
+    o.progress(s);
+}
+
+} // namespace
+
+PointCloud filter_cloud(const std::string& path, const PointCloud& cloud, const CloudPrepOptions& o,
+                        CloudPrepReport& r, std::vector<std::string>* notes) {
+  check_options(o);
   r.read = cloud.points.rows();
   PointCloud c = check_cloud(path, cloud, notes);
   r.distinct = c.points.rows();
   if (o.outlier_neighbours > 0) {
-    say("statistical outlier removal (k = " + std::to_string(o.outlier_neighbours) + ")");
+    say(o, "statistical outlier removal (k = " + std::to_string(o.outlier_neighbours) + ")");
     c = remove_statistical_outliers(c, o.outlier_neighbours, o.outlier_ratio, &r.outliers);
   }
   if (o.voxel > 0) {
-    say("voxel-grid downsampling");
+    say(o, "voxel-grid downsampling");
     c = voxel_downsample(c, o.voxel);
   }
   c = check_cloud(path, c); // what the filters left must still bound a volume
   r.kept = c.points.rows();
+  return c;
+}
+
+void cloud_normals(const std::string& path, PointCloud& c, const CloudPrepOptions& o,
+                   CloudPrepReport& r, std::vector<std::string>* notes) {
+  check_options(o);
   if (o.normals == NormalSource::file && !c.has_normals())
     throw_input_error(path, 0,
                       "the file has no normals (fields nx, ny, nz); estimate them instead");
   if (o.normals == NormalSource::estimate || !c.has_normals()) {
-    say("normal estimation (k = " + std::to_string(o.normal_neighbours) + ")");
+    say(o, "normal estimation (k = " + std::to_string(o.normal_neighbours) + ")");
     c.normals = estimate_normals(c.points, o.normal_neighbours, o.threads);
     r.normals_estimated = true;
   } else if (o.normals == NormalSource::automatic) {
@@ -58,11 +71,19 @@ PointCloud prepare_cloud(const std::string& path, const PointCloud& cloud,
                        " % of neighbour pairs disagree): re-oriented");
   }
   if (r.normals_estimated || r.normals_reoriented) {
-    say("normal orientation (k = " + std::to_string(o.orient_neighbours) + ")");
+    say(o, "normal orientation (k = " + std::to_string(o.orient_neighbours) + ")");
     OrientationInfo info;
     orient_normals(c.points, c.normals, o.orient_neighbours, &info);
     r.components = info.components;
   }
+}
+
+PointCloud prepare_cloud(const std::string& path, const PointCloud& cloud,
+                         const CloudPrepOptions& o, CloudPrepReport* report_out,
+                         std::vector<std::string>* notes) {
+  CloudPrepReport r;
+  PointCloud c = filter_cloud(path, cloud, o, r, notes);
+  cloud_normals(path, c, o, r, notes);
   if (report_out)
     *report_out = r;
   return c;

@@ -64,4 +64,11 @@ struct SlicedFit {
 SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
                           const SliceFitOptions& options = {});
 
+// The loft's input: each fitted section's samples (FittedSection::section) as a Section with id
+// "1", "2", ... in station order, and the options fit_sliced_scan lofts them with (sections
+// aligned at their leading edges, arc-length correspondence). Another loft of these (e.g. the
+// implicit body of build_section_body) is the same surface.
+std::vector<Section> fitted_sections(const std::vector<FittedSection>& fitted);
+LoftOptions sliced_scan_loft_options();
+
 } // namespace interlin

@@ -40,8 +40,20 @@ struct CloudPrepReport {
 // (optional) and notes (optional, lines for the summary).
 // Throws InputError "PATH: ..." for degenerate clouds (check_cloud) and for
 // NormalSource::file without normals in the file; std::invalid_argument for bad options.
+// Same as filter_cloud followed by cloud_normals.
 PointCloud prepare_cloud(const std::string& path, const PointCloud& cloud,
                          const CloudPrepOptions& options = {}, CloudPrepReport* report = nullptr,
                          std::vector<std::string>* notes = nullptr);
+
+// The steps before the normals: repeated points, outliers, voxels, and the checks of what is
+// left (report fields read .. kept). For jobs that need the points only (sectioned scans).
+PointCloud filter_cloud(const std::string& path, const PointCloud& cloud,
+                        const CloudPrepOptions& options, CloudPrepReport& report,
+                        std::vector<std::string>* notes = nullptr);
+
+// The normal steps of a filtered cloud `c` (kept, estimated and/or oriented by options.normals;
+// report fields normals_* .. components).
+void cloud_normals(const std::string& path, PointCloud& c, const CloudPrepOptions& options,
+                   CloudPrepReport& report, std::vector<std::string>* notes = nullptr);
 
 } // namespace interlin

@@ -1,0 +1,54 @@
+#pragma once
+// Sectioned scans of a family of blade-like bodies (cambered, twisted, tapered thin profiles) in
+// planar or radial slices with noise: the slices tests and the CLI's cloud tests.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace interlin::test {
+
+// The profile at span fraction t in [0, 1] (2D, chord about 2 - t): a thin cambered ellipse
+// (thickness / chord `thick`), rotated by the twist 0.6 t rad.
+inline Eigen::Vector2d profile(double theta, double t, double thick) {
+  const double a = 1 - 0.5 * t, s = std::sin(theta);
+  const Eigen::Vector2d q(a * std::cos(theta), a * (thick * s + 0.25 * s * s));
+  return Eigen::Rotation2Dd(0.6 * t) * q;
+}
+
+struct Scan {
+  Eigen::MatrixX3d P;
+  std::vector<double> t; // span fraction of each slice
+};
+
+// `slices` slices of `per` points (random positions around the profile), noise sigma in 3D.
+// Planar: planes x = 3 t; radial: cylinders r = 10 + 3 t about z, profile coordinates (r * angle,
+// z).
+inline Scan scan(bool radial, int slices, int per, double sigma, double thick, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0, 2 * M_PI);
+  std::normal_distribution<double> G(0, sigma);
+  Scan s;
+  s.P.resize(slices * per, 3);
+  for (int k = 0; k < slices; ++k) {
+    const double t = double(k) / (slices - 1);
+    s.t.push_back(t);
+    for (int i = 0; i < per; ++i) {
+      const Eigen::Vector2d q = profile(U(rng), t, thick);
+      Eigen::Vector3d p;
+      if (radial) {
+        const double r = 10 + 3 * t;
+        p = {r * std::cos(q(0) / r), r * std::sin(q(0) / r), q(1)};
+      } else {
+        p = {3 * t, q(0), q(1)};
+      }
+      s.P.row(k * per + i) = (p + Eigen::Vector3d(G(rng), G(rng), G(rng))).transpose();
+    }
+  }
+  return s;
+}
+
+} // namespace interlin::test
