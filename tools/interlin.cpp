@@ -1,6 +1,8 @@
 // interlin: spline-interlineation surface reconstruction, command-line entry point.
 #include "commands.h"
 
+#include "interlin/reconstruction/clouds/cloud_implicit_ifl.h"
+
 #include <cstring>
 #include <iostream>
 
@@ -21,9 +23,11 @@ Usage:
       Implicit model (.rf or .ifl) -> its value F (and gradient) at the points of a CSV file.
   interlin mesh MODEL -o OUT [-o OUT ...] [--resolution N | --cell H] [options]
       Implicit model (.rf or .ifl) -> closed triangle mesh of the body (.stl .obj .ply .off .png).
-  interlin implicit SECTIONS.csv|MODEL.rf -o MODEL.ifl [options]
+  interlin implicit SECTIONS.csv|SCAN.{pcd,ply,xyz,csv}|MODEL.rf -o MODEL.ifl [options]
       Sections -> implicit equation of the lofted body (0 exactly on the loft and its caps,
-      the signed distance near it); an R-function model -> its normalised equation.
+      the signed distance near it); a point cloud -> the same through fitted sections (a
+      sectioned scan) or a partition of unity of local fits (any scan); an R-function model
+      -> its normalised equation.
   interlin profile PARAMS.json -o SECTIONS.csv [--joint g2|g3] [--curvature K.csv]
       13 cascade parameters (+ optional span law) -> turbine blade profile(s) as a section
       CSV that `interlin loft` accepts (seed 004, natural parametrization).
@@ -40,6 +44,7 @@ int main(int argc, char** argv) {
     std::cerr << "interlin: no command given (see interlin --help)\n";
     return 2;
   }
+  interlin::register_cloud_ifl_kind(); // .ifl files of point clouds (eval, mesh, ifl() in .rf)
   const char* cmd = argv[1];
   if (!std::strcmp(cmd, "--help") || !std::strcmp(cmd, "-h") || !std::strcmp(cmd, "help")) {
     std::cout << kHelp;

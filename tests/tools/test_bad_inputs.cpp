@@ -165,6 +165,18 @@ std::string repeat(const std::string& text, long n) {
   return s;
 }
 
+// `n` points on the unit sphere (a Fibonacci lattice), one "x y z" line each.
+std::string sphere_cloud(int n = 200) {
+  std::string s;
+  char row[96];
+  for (int i = 0; i < n; ++i) {
+    const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z), a = 2.399963229728653 * i;
+    std::snprintf(row, sizeof row, "%.17g %.17g %.17g\n", r * std::cos(a), r * std::sin(a), z);
+    s += row;
+  }
+  return s;
+}
+
 // --------------------------------------------------------------------------------- cases --
 
 struct Case {
@@ -331,6 +343,40 @@ std::vector<Case> cases() {
       1,
       "^interlin: p\\.json: .* points.* limit .*--max-points",
       {}},
+      // ---- implicit SCAN (point clouds)
+      {"implicit: cloud accepted", {file("c.xyz", sphere_cloud())}, "implicit c.xyz -o o.ifl -q",
+       0, "", {"o.ifl"}},
+      {"implicit: cloud binary junk .pcd", {file("c.pcd", junk())}, "implicit c.pcd -o o.ifl -q",
+       1, "^interlin: c\\.pcd:1: not a PCD file", {}},
+      {"implicit: cloud binary junk .ply", {file("c.ply", junk())}, "implicit c.ply -o o.ifl -q",
+       1, "^interlin: c\\.ply:1: not a PLY file", {}},
+      {"implicit: cloud empty", {file("c.xyz", "")}, "implicit c.xyz -o o.ifl -q", 1,
+       "^interlin: c\\.xyz: .*(empty|no points)", {}},
+      {"implicit: cloud of 3 points", {file("c.xyz", "0 0 0\n1 0 0\n0 1 0\n")},
+       "implicit c.xyz -o o.ifl -q", 1, "^interlin: c\\.xyz: only 3 distinct point", {}},
+      {"implicit: cloud with NaN", {file("c.xyz", sphere_cloud(30) + "0 nan 1\n")},
+       "implicit c.xyz -o o.ifl -q", 1, "^interlin: c\\.xyz:31: column y: 'nan' is not a finite", {}},
+      {"implicit: cloud ragged", {file("c.xyz", sphere_cloud(30) + "0 1\n")},
+       "implicit c.xyz -o o.ifl -q", 1, "^interlin: c\\.xyz:31: expected 3 fields", {}},
+      {"implicit: cloud of one repeated point", {file("c.xyz", repeat("1 2 3\n", 50))},
+       "implicit c.xyz -o o.ifl -q", 1, "^interlin: c\\.xyz: only 1 distinct point", {}},
+      {"implicit: cloud on a plane", {file("c.xyz", repeat("0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 3 0\n", 1) +
+                                              "3 1 0\n4 4 0\n5 2 0\n2 5 0\n6 1 0\n7 3 0\n"
+                                              "1 7 0\n8 8 0\n3 9 0\n9 2 0\n4 6 0\n6 6 0\n"
+                                              "7 7 0\n2 8 0\n9 9 0\n5 5 0\n")},
+       "implicit c.xyz -o o.ifl -q", 1, "^interlin: c\\.xyz: all 21 points lie on one plane", {}},
+      {"implicit: .csv without a header", {file("c.csv", "0,0,0\n1,0,0\n0,1,0\n")},
+       "implicit c.csv -o o.ifl -q", 1, "^interlin: c\\.csv:1: a \\.csv file without a header", {}},
+      {"implicit: cloud a directory", {directory("c.xyz")}, "implicit c.xyz -o o.ifl -q", 1,
+       "^interlin: c\\.xyz: cannot open: Is a directory", {}},
+      {"implicit: no radial slices", {file("c.xyz", sphere_cloud())},
+       "implicit c.xyz -o o.ifl --slices radial -q", 1, "^interlin: c\\.xyz: no radial slices found",
+       {}},
+      {"implicit: --slices none with --margin", {file("c.xyz", sphere_cloud())},
+       "implicit c.xyz -o o.ifl --slices none --margin 0.1 -q", 2,
+       "^interlin implicit: --margin applies to sections and sectioned scans", {}},
+      {"implicit: --noise nan", {file("c.xyz", sphere_cloud())},
+       "implicit c.xyz -o o.ifl --noise nan -q", 2, "^interlin implicit: --noise", {}},
   };
   // clang-format on
 }

@@ -1,0 +1,183 @@
+// interlin implicit SCAN.{pcd,ply,xyz,csv,...}: a point cloud -> .ifl. A sectioned scan (points
+// on parallel planes or coaxial cylinders) becomes fitted sections -> loft -> the section body
+// of issue 10 (exact on the loft through the fitted sections); any other cloud the multi-level
+// partition of unity of local fits (cloud_implicit.h, kind cloud_pu).
+#include "implicit_jobs.h"
+
+#include "interlin/reconstruction/clouds/cloud_implicit.h"
+#include "interlin/reconstruction/clouds/cloud_implicit_ifl.h"
+#include "interlin/reconstruction/clouds/fit_sliced_scan.h"
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
+#include "interlin/reconstruction/clouds/read_point_cloud.h"
+#include "interlin/reconstruction/io/input_error.h"
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+namespace interlin::cli {
+
+namespace {
+
+const std::vector<const char*> kBodyOptions = {"resolution", "band", "margin"};
+
+SliceKind slice_option(const ParsedArgs& a) {
+  const std::string s =
+      parse_choice("slices", a.get("slices", "auto"), {"auto", "planar", "radial", "none"});
+  return s == "planar"   ? SliceKind::planar
+         : s == "radial" ? SliceKind::radial
+         : s == "none"   ? SliceKind::none
+                         : SliceKind::automatic;
+}
+
+CloudPrepOptions prep_options(const ParsedArgs& a, const Progress& progress) {
+  CloudPrepOptions o;
+  o.outlier_neighbours = parse_int("outliers", a.get("outliers", "16"), 0, 1000);
+  o.outlier_ratio = parse_double("outlier-ratio", a.get("outlier-ratio", "3"));
+  if (!(o.outlier_ratio > 0))
+    throw UsageError("--outlier-ratio: expected a number > 0");
+  o.voxel = parse_double("voxel", a.get("voxel", "0"));
+  if (!(o.voxel >= 0))
+    throw UsageError("--voxel: expected a leaf size >= 0 (0: no downsampling)");
+  const std::string n =
+      parse_choice("normals", a.get("normals", "auto"), {"auto", "file", "estimate"});
+  o.normals = n == "file"       ? NormalSource::file
+              : n == "estimate" ? NormalSource::estimate
+                                : NormalSource::automatic;
+  o.normal_neighbours = parse_int("normal-neighbours", a.get("normal-neighbours", "16"), 3, 1000);
+  o.threads = parse_int("threads", a.get("threads", "0"), 0, 4096);
+  o.progress = progress;
+  return o;
+}
+
+// A note on stderr for options the chosen path does not use (the path is known only after
+// slice detection when --slices is auto).
+void unused(const ParsedArgs& a, const std::vector<const char*>& options, const std::string& why,
+            const Progress& progress) {
+  for (const char* o : options)
+    if (a.has(o) && !progress.quiet)
+      std::cerr << "note: --" << o << " ignored: " << why << "\n";
+}
+
+void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& family, double noise,
+               SectionBodyOptions bo, const std::string& output, const Progress& progress) {
+  unused(a, {"max-depth"}, "it applies to the unstructured fit", progress);
+  bo.loft = sliced_scan_loft_options();
+  SliceFitOptions so;
+  so.noise = noise;
+  so.progress = progress;
+  progress("fitting " + std::to_string(family.members.size()) + " sections");
+  const SlicedFit fit = fit_sliced_scan(c.points, family, so);
+  int cmin = 1 << 30, cmax = 0;
+  double rms = 0;
+  for (const FittedSection& s : fit.sections) {
+    cmin = std::min(cmin, s.control);
+    cmax = std::max(cmax, s.control);
+    rms = std::max(rms, s.rms);
+  }
+  std::cout << "  slices       " << (family.kind == SliceKind::planar ? "planar" : "radial") << ", "
+            << family.members.size() << " along (" << fmt(family.axis(0), 3) << ", "
+            << fmt(family.axis(1), 3) << ", " << fmt(family.axis(2), 3) << "), stations "
+            << fmt(family.stations.front()) << " .. " << fmt(family.stations.back()) << ", spread "
+            << fmt(family.spread, 3) << "\n";
+  std::cout << "  fit          closed cubics of " << cmin << " .. " << cmax
+            << " control points, noise " << fmt(fit.noise, 3)
+            << (noise > 0 ? " (given)" : " (the slices' spread)") << ", largest rms residual "
+            << fmt(rms, 3) << "; fitted curves to the loft " << fmt(fit.section_gap, 3) << "\n";
+  progress("implicit body of the loft");
+  const SectionBodyBuild b = build_section_body(fitted_sections(fit.sections), bo);
+  print_section_body(b, std::to_string(fit.sections.size()) + " fitted");
+  progress("writing " + output);
+  write_model(output, to_ifl(b.model));
+}
+
+void unstructured(const std::string& input, PointCloud& c, const CloudPrepOptions& po,
+                  CloudPrepReport& rep, CloudFitOptions fo, const std::string& output,
+                  const Progress& progress) {
+  std::vector<std::string> notes;
+  cloud_normals(input, c, po, rep, &notes);
+  if (!progress.quiet)
+    for (const std::string& n : notes)
+      std::cerr << "note: " << n << "\n";
+  CloudFitInfo info;
+  progress("fitting the partition of unity");
+  auto model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, fo, &info));
+  std::cout << "  normals      "
+            << (rep.normals_estimated    ? "estimated (PCL) and oriented"
+                : rep.normals_reoriented ? "from the file, re-oriented"
+                                         : "from the file")
+            << "\n";
+  std::cout << "  noise        sigma = " << fmt(info.noise, 3)
+            << (info.noise_estimated ? " (estimated from the points)" : " (given)") << "\n";
+  std::cout << "  octree       " << info.leaves << " leaves (" << info.two_sheet_leaves
+            << " with two sheets, " << info.far_leaves << " far from the points), depth "
+            << info.depth << (info.flipped ? "; the normals pointed inward: F negated" : "")
+            << "\n";
+  std::cout << "  fit          |F| / |grad F| at the points: rms " << fmt(info.rms_distance, 3)
+            << ", max " << fmt(info.max_distance, 3) << "; " << fmt(100 * info.within_3_sigma, 4)
+            << " % within 3 sigma\n";
+  progress("writing " + output);
+  write_model(output, to_ifl(*model, info.noise));
+}
+
+} // namespace
+
+void cloud_job(const ParsedArgs& a, const std::string& input, const std::string& output,
+               const Progress& progress, const std::string& why) {
+  for (const char* o : {"set", "var", "mesh-resolution"})
+    if (a.has(o))
+      throw UsageError(std::string("--") + o + " applies to R-function models (.rf) only");
+  const SliceKind kind = slice_option(a);
+  if (kind == SliceKind::none)
+    for (const char* o : kBodyOptions)
+      if (a.has(o))
+        throw UsageError(std::string("--") + o +
+                         " applies to sections and sectioned scans (not with --slices none)");
+  if (kind != SliceKind::none && kind != SliceKind::automatic && a.has("max-depth"))
+    throw UsageError("--max-depth applies to the unstructured fit (not with --slices " +
+                     a.get("slices") + ")");
+  double noise = 0;
+  if (a.has("noise")) {
+    noise = parse_double("noise", a.get("noise"));
+    if (!(noise > 0))
+      throw UsageError("--noise: expected a standard deviation > 0");
+  }
+  // Every option is checked before any work.
+  const CloudPrepOptions po = prep_options(a, progress);
+  CloudFitOptions fo;
+  fo.noise = noise;
+  fo.max_depth = parse_int("max-depth", a.get("max-depth", "12"), 1, 20);
+  fo.threads = po.threads;
+  fo.progress = progress;
+  const SectionBodyOptions bo = section_body_options(a, progress);
+  progress("reading " + input);
+  std::vector<std::string> notes;
+  const PointCloud raw = read_point_cloud(input, &notes);
+  CloudPrepReport rep;
+  PointCloud c = filter_cloud(input, raw, po, rep, &notes);
+  if (!progress.quiet)
+    for (const std::string& n : notes)
+      std::cerr << "note: " << n << "\n";
+  std::cout << "interlin implicit " << input << "\n";
+  std::cout << "  input        " << why << "\n";
+  std::cout << "  points       " << rep.read << " read, " << rep.distinct << " distinct, "
+            << rep.outliers << " outliers removed, " << rep.kept << " kept\n";
+  if (kind != SliceKind::none) {
+    progress("detecting slices");
+    const SliceFamily family = detect_slices(c.points, kind);
+    if (family.kind != SliceKind::none) {
+      sectioned(a, c, family, noise, bo, output, progress);
+      return;
+    }
+    if (kind != SliceKind::automatic)
+      throw_input_error(input, 0,
+                        std::string("no ") + (kind == SliceKind::planar ? "planar" : "radial") +
+                            " slices found (3 or more thin slices of closed profiles, "
+                            "docs/formats.md); use --slices auto or none for an unstructured fit");
+    std::cout << "  slices       none found: unstructured fit\n";
+    unused(a, kBodyOptions, "no slices were found (they apply to sectioned scans)", progress);
+  }
+  unstructured(input, c, po, rep, fo, output, progress);
+}
+
+} // namespace interlin::cli
