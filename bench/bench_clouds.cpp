@@ -9,7 +9,9 @@
 // time of the reconstruction (fit + mesh; Poisson's own call, which includes its mesh).
 //
 // Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R] [--depths D,D]
-//                     [--threads T]
+//                     [--threads T] [--methods interlin,pcl,open3d|all]
+// (--methods: which of interlin (unstructured and, for slices, sectioned), PCL and Open3D run;
+// the summary's ratios need at least one Poisson.)
 
 #include "cloud_cases.h"
 #include "poisson_baselines.h"
@@ -308,6 +310,7 @@ int main(int argc, char** argv) {
   std::string cases = "all";
   int points = 100000, resolution = 256, threads = 2;
   std::vector<int> depths{8, 9};
+  std::string methods_wanted = "all";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--cases")
@@ -318,6 +321,8 @@ int main(int argc, char** argv) {
       resolution = std::stoi(v);
     else if (a == "--threads")
       threads = std::stoi(v);
+    else if (a == "--methods")
+      methods_wanted = v;
     else if (a == "--depths") {
       depths.clear();
       for (const std::string& d : split(v))
@@ -362,12 +367,21 @@ int main(int argc, char** argv) {
     std::cout << "\n\n| method | Chamfer / diag | Hausdorff / diag | zero-set Chamfer | "
                  "hold-out mean / max | time [s] | peak MB | vertices |\n"
                  "|---|---|---|---|---|---|---|---|\n";
-    std::vector<Method> methods{{Method::interlin, 0, resolution}};
-    if (c.sectioned())
-      methods.insert(methods.begin(), {Method::sectioned, 0, 0});
+    const std::vector<std::string> mw = split(methods_wanted);
+    auto run_method = [&](const std::string& m) {
+      return methods_wanted == "all" || std::find(mw.begin(), mw.end(), m) != mw.end();
+    };
+    std::vector<Method> methods;
+    if (run_method("interlin")) {
+      if (c.sectioned())
+        methods.push_back({Method::sectioned, 0, 0});
+      methods.push_back({Method::interlin, 0, resolution});
+    }
     for (int d : depths) {
-      methods.push_back({Method::pcl, d, 0});
-      methods.push_back({Method::open3d, d, 0});
+      if (run_method("pcl"))
+        methods.push_back({Method::pcl, d, 0});
+      if (run_method("open3d"))
+        methods.push_back({Method::open3d, d, 0});
     }
     double best = kNaN, best_time = kNaN, ours = kNaN, our_time = kNaN;
     std::string best_label;
