@@ -163,7 +163,7 @@ TEST_CASE("CLI implicit: usage and input errors, no output file", "[cli][implici
   CHECK_FALSE(fs::exists(d / "b.ifl"));
   expect_error(run("implicit " + d / "bad.csv"), 2, "give -o MODEL.ifl");
   expect_error(run("implicit " + d / "bad.csv -o " + d / "b.stl"), 2, "must end in .ifl");
-  expect_error(run("implicit " + d / "scan.xyz -o " + d / "b.ifl"), 2, "unknown kind");
+  expect_error(run("implicit " + d / "scan.obj -o " + d / "b.ifl"), 2, "unknown kind");
   expect_error(run("implicit " + d / "bad.csv -o " + d / "b.ifl --set a=1"), 2,
                "--set applies to R-function models");
   expect_error(run("implicit " + d / "bad.csv -o " + d / "b.ifl --band 3,1"), 2, "--band");
