@@ -86,6 +86,9 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
   --seed-rule            seed 003's own classification (margin 0; F > 0 for tetrahedra,
                          F >= 0 for hexahedra): reproduces its published counts
   --smooth K             K sweeps of functional (12) over the boundary nodes
+  --max-elements N       most elements the grid may hold, 6 tetrahedra or 1 hexahedron
+                         per cell (default 14000000: about 2.2 GB of memory for
+                         tetrahedra, 4.5 GB for hexahedra)
   The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
   inverted elements (an error unless 0), max |F| at the boundary nodes and the volume.
   interlin mesh data/models/body11.rf -o body11.msh -o body11.vtu --volume tet --resolution 40
@@ -113,6 +116,26 @@ double grid_node_estimate(const Eigen::AlignedBox3d& box, const ImplicitMeshOpti
   return ((side / h - 1e-9).ceil().max(1.0) + 1).prod(); // as grid_with_step rounds
 }
 
+// Grid limits are usage errors (the options asked for them), checked before any work: the grid's
+// nodes (time) and with --volume the elements its cells could hold (memory: 6 tetrahedra or 1
+// hexahedron per cell, and there are fewer cells than nodes).
+void check_grid_limits(const ParsedArgs& a, const Eigen::AlignedBox3d& box,
+                       const ImplicitMeshOptions& o) {
+  const std::string asked =
+      a.has("cell") ? "--cell " + a.get("cell") : "--resolution " + std::to_string(o.resolution);
+  const double n = grid_node_estimate(box, o);
+  const long long max_nodes = limit_option(a, "max-grid-nodes", limits::grid_nodes);
+  if (n > double(max_nodes))
+    options_exceed(asked, "a grid of " + fmt(n, 3) + " nodes", max_nodes, "max-grid-nodes");
+  if (!a.has("volume"))
+    return;
+  const double elements = n * (a.get("volume") == "hex" ? 1 : 6);
+  const long long max_elements = limit_option(a, "max-elements", limits::volume_elements);
+  if (elements > double(max_elements))
+    options_exceed(asked, "up to " + fmt(elements, 3) + " volume elements", max_elements,
+                   "max-elements");
+}
+
 // The body of `interlin mesh` (run_command handles help, exit statuses and removal on failure).
 void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   const std::string input = single_input(a, "model file");
@@ -121,7 +144,6 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   ImplicitMeshOptions o;
   o.resolution = parse_int("resolution", a.get("resolution", "128"), 1, 1000000000);
   o.max_triangles = limit_option(a, "max-triangles", limits::mesh_triangles);
-  const long long max_grid_nodes = limit_option(a, "max-grid-nodes", limits::grid_nodes);
   if (a.has("cell")) {
     o.cell = parse_double("cell", a.get("cell"));
     if (!(o.cell > 0))
@@ -153,7 +175,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   if (outputs.empty())
     throw UsageError("nothing to do: give -o FILE");
   const bool volume = a.has("volume");
-  for (const char* only : {"margin", "sweeps", "seed-rule"})
+  for (const char* only : {"margin", "sweeps", "seed-rule", "max-elements"})
     if (!volume && a.has(only))
       throw UsageError(std::string("--") + only + " needs --volume tet|hex");
   if (volume && (a.has("subboxes") || a.has("no-project") || a.has("flip")))
@@ -174,11 +196,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   progress("reading " + input);
   const ImplicitFunction f = load_implicit(input, mo);
   const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
-  // Grid limits are usage errors (the options asked for them), checked before any work.
-  if (const double n = grid_node_estimate(box, o); n > double(max_grid_nodes))
-    options_exceed(a.has("cell") ? "--cell " + a.get("cell")
-                                 : "--resolution " + std::to_string(o.resolution),
-                   "a grid of " + fmt(n, 3) + " nodes", max_grid_nodes, "max-grid-nodes");
+  check_grid_limits(a, box, o);
   try {
     const RegularGrid g =
         o.cell > 0 ? grid_with_cell(box, o.cell) : grid_with_resolution(box, o.resolution);

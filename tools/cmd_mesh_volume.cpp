@@ -101,7 +101,8 @@ std::vector<OptionSpec> volume_options() {
   return {{"volume", 0, true, false},
           {"margin", 0, true, false},
           {"sweeps", 0, true, false},
-          {"seed-rule", 0, false, false}};
+          {"seed-rule", 0, false, false},
+          {"max-elements", 0, true, false}};
 }
 
 void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeRequest& r,

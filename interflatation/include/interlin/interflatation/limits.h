@@ -39,6 +39,11 @@ inline constexpr long long mesh_triangles = 20'000'000;
 // interlin mesh, time: nodes of the sampling grid, each one evaluation of the model (a cube
 // box at --resolution 1024 fits); --max-grid-nodes.
 inline constexpr long long grid_nodes = 1'100'000'000;
+// interlin mesh --volume, memory: elements the grid's cells could hold (6 tetrahedra or 1
+// hexahedron per cell). The command peaks at about 160 bytes per tetrahedron and 320 per
+// hexahedron (a box-filling cuboid at resolutions 24 to 64), so at most about 2.2 GB or 4.5 GB;
+// --max-elements.
+inline constexpr long long volume_elements = 14'000'000;
 // interlin profile, memory and time: profile points written, stations x points per profile;
 // --max-points.
 inline constexpr long long profile_points = 10'000'000;
