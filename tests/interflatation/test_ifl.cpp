@@ -108,7 +108,7 @@ TEST_CASE("ifl: checked access names the block, field and shape", "[ifl]") {
 TEST_CASE("ifl: damaged files give one line naming file and line", "[ifl]") {
   const std::string good = text_of(sample_block());
   CHECK(error_of("") ==
-        "bad.ifl:0: unexpected end of file; expected the header line 'interlin-ifl 1'");
+        "bad.ifl:1: unexpected end of file; expected the header line 'interlin-ifl 1'");
   CHECK(error_of("solid ascii\n").find("bad.ifl:1: not an interlin implicit model file") == 0);
   CHECK(error_of("interlin-ifl 2\n").find("bad.ifl:1: container version 2 is newer") == 0);
   CHECK(error_of("interlin-ifl x\n").find("bad.ifl:1: version: 'x' is not an integer") == 0);
@@ -119,7 +119,7 @@ TEST_CASE("ifl: damaged files give one line naming file and line", "[ifl]") {
   CHECK(error_of("interlin-ifl 1\nblock a b\nfrobnicate\nend\n")
             .find("bad.ifl:3: unknown keyword 'frobnicate'") == 0);
   CHECK(error_of("interlin-ifl 1\nblock a b\nnumber n 1\n")
-            .find("bad.ifl:3: unexpected end of file") == 0);
+            .find("bad.ifl:4: unexpected end of file") == 0); // the missing line
   CHECK(error_of("interlin-ifl 1\nblock a b\nend\nend\n") ==
         "bad.ifl:3: unexpected data after the model block");
   CHECK(error_of("interlin-ifl 1\nblock a b/c\nend\n").find("is not a valid name") !=

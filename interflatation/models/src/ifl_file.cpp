@@ -129,9 +129,9 @@ private:
 
   // The next line's tokens (separated by single spaces); `what` names what is expected at EOF.
   std::vector<std::string> next_line(const std::string& what) {
+    ++line_; // at the end of the file: the line that is missing
     if (pos_ >= s_.size())
       fail("unexpected end of file; expected " + what);
-    ++line_;
     const size_t end = s_.find('\n', pos_);
     if (end == std::string::npos)
       fail("unexpected end of file (the last line has no line break); expected " + what);

@@ -34,6 +34,22 @@ namespace interlin {
 
 namespace {
 
+// The .ifl files that ifl("...") calls of the models being read are loading, outermost first. A
+// normalised model (.ifl) holds .rf source that may call ifl() in turn, so a file reached again
+// would load itself until memory runs out. Each nested read runs on a thread of its own, which
+// inherits the chain (on_model_stack).
+thread_local std::vector<std::string> ifl_chain;
+
+// rf::detail::on_large_stack, with the caller's ifl_chain.
+template <class F>
+auto on_model_stack(F&& fn) {
+  const std::vector<std::string> chain = ifl_chain;
+  return rf::detail::on_large_stack([&] {
+    ifl_chain = chain;
+    return fn();
+  });
+}
+
 using rf::Expr;
 using rf::detail::Ast;
 using rf::detail::Pos;
@@ -252,9 +268,19 @@ const std::map<std::string, Builtin>& builtins() {
     t["arc_frame"] = {4, 4, [](A a) { return arc_frame(a.e(0), a.e(1), a.e(2), a.num(3)); }};
     // implicit bodies of .ifl files (seed 001 ch. 4 models, point-cloud fits) as operands
     t["ifl"] = {1, 1, [](A a) {
+                  const std::string path = a.path(0);
+                  std::error_code ec;
+                  const std::filesystem::path real = std::filesystem::weakly_canonical(path, ec);
+                  const std::string key = ec ? path : real.string();
+                  if (std::count(ifl_chain.begin(), ifl_chain.end(), key))
+                    a.fail(0, path + " is being loaded already: ifl(\"...\") calls in a cycle");
+                  ifl_chain.push_back(key);
+                  struct Pop {
+                    ~Pop() { ifl_chain.pop_back(); }
+                  } pop;
                   std::shared_ptr<const ImplicitFunction> body;
                   try {
-                    body = std::make_shared<const ImplicitFunction>(load_ifl(a.path(0)));
+                    body = std::make_shared<const ImplicitFunction>(load_ifl(path));
                   } catch (const InputError& e) {
                     a.fail(0, e.what());
                   }
@@ -565,7 +591,7 @@ private:
 
 ModelExpression parse_model_expression(const std::string& text, const std::string& name,
                                        const ModelOptions& options) {
-  return rf::detail::on_large_stack(
+  return on_model_stack(
       [&] { return Evaluator(name, options).run(rf::detail::parse_model_text(text, name)); });
 }
 
@@ -575,7 +601,7 @@ ModelExpression load_model_expression(const std::string& path, const ModelOption
 
 ImplicitFunction parse_model(const std::string& text, const std::string& name,
                              const ModelOptions& options) {
-  return rf::detail::on_large_stack([&] { // the expression is also destroyed on that stack
+  return on_model_stack([&] { // the expression is also destroyed on that stack
     const ModelExpression m =
         Evaluator(name, options).run(rf::detail::parse_model_text(text, name));
     return rf::compile(m.F, m.box);
