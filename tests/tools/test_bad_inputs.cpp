@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -22,6 +23,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <sys/wait.h>
 #include <vector>
@@ -156,6 +158,52 @@ std::string junk(std::size_t n = 4096) {
   return s;
 }
 
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A real implicit model file, written by `interlin implicit NAME -o m.ifl --resolution 8` from
+// the file NAME holding `content` (sections(): kind section_body; ball(): kind normalized_rf).
+std::string ifl_of(const std::string& name, const std::string& content) {
+  const TempDir dir("table-ifl");
+  std::ofstream(dir / name, std::ios::binary) << content;
+  const std::string cmd = "cd '" + dir.path().string() + "' && " INTERLIN_CLI " implicit " + name +
+                          " -o m.ifl --resolution 8 -q";
+  if (std::system(cmd.c_str()) != 0)
+    throw std::runtime_error("bad-input table: interlin implicit " + name + " failed");
+  return slurp(dir.path() / "m.ifl");
+}
+
+// `text` with its first `from` (which must occur) replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  if (at == std::string::npos)
+    throw std::logic_error("bad-input table: '" + from + "' not found");
+  return text.replace(at, from.size(), to);
+}
+
+// `ifl` with its text field `name` set to `value`.
+std::string with_text(const std::string& ifl, const std::string& name, const std::string& value) {
+  const std::string head = "\ntext " + name + " ";
+  const std::size_t at = ifl.find(head), from = at + head.size();
+  if (at == std::string::npos)
+    throw std::logic_error("bad-input table: text '" + name + "' not found");
+  const std::size_t eol = ifl.find('\n', from), old = std::stoul(ifl.substr(from, eol - from));
+  return ifl.substr(0, from) + std::to_string(value.size()) + "\n" + value +
+         ifl.substr(eol + 1 + old);
+}
+
+// `ifl` with a NaN as the first value of the array whose header line is `header`.
+std::string nan_in_array(std::string ifl, const std::string& header) {
+  const std::size_t at = ifl.find(header);
+  if (at == std::string::npos)
+    throw std::logic_error("bad-input table: '" + header + "' not found");
+  const double nan = std::nan("");
+  std::memcpy(&ifl[at + header.size()], &nan, sizeof nan);
+  return ifl;
+}
+
 // `text` repeated `n` times.
 std::string repeat(const std::string& text, long n) {
   std::string s;
@@ -193,6 +241,16 @@ std::vector<Case> cases() {
   const Input m = file("m.rf", ball());
   const Input p = file("p.csv", points());
   const Input pj = file("p.json", profile_json());
+  const std::string body = ifl_of("s.csv", sections()); // kind section_body
+  const Input b = file("b.ifl", body);
+  const std::string normalised = ifl_of("m.rf", ball()); // kind normalized_rf
+  const Input n = file("n.ifl", normalised);
+  // A normalised model whose source calls ifl("l.ifl") (relative to l.rf, in the case's
+  // directory), saved as l.ifl: loading it loads itself.
+  const Input loop = file(
+      "l.ifl",
+      with_text(with_text(normalised, "source", "box(-1,-1,-1,1,1,1);\nres = ifl(\"l.ifl\");\n"),
+                "path", "l.rf"));
   // One row per case, a row a line (or a few).
   // clang-format off
   return {
@@ -318,9 +376,86 @@ std::vector<Case> cases() {
        "^interlin mesh: --resolution 100000: asks for a grid of .* nodes, more than the limit of "
        "1100000000 \\(raise it with --max-grid-nodes N\\)", {}},
       {"mesh: --cell 1e-9", {m}, "mesh m.rf -o o.stl --cell 1e-9 -q", 2, "--max-grid-nodes", {}},
+      {"mesh: --volume tet, model BOM + CRLF", {file("m.rf", bom(crlf(ball())))},
+       "mesh m.rf -o o.msh -o o.vtu --volume tet --resolution 8 -q", 0, "", {"o.msh", "o.vtu"}},
+      {"mesh: --volume tet --resolution 1000", {m},
+       "mesh m.rf -o o.msh --volume tet --resolution 1000 -q", 2,
+       "^interlin mesh: --resolution 1000: asks for up to .* volume elements, more than the limit "
+       "of \\d+ \\(raise it with --max-elements N\\)", {}},
+      {"mesh: --volume hex --cell 0.005", {m}, "mesh m.rf -o o.inp --volume hex --cell 0.005 -q", 2,
+       "--max-elements", {}},
+      {"mesh: --max-elements without --volume", {m},
+       "mesh m.rf -o o.stl --max-elements 10 -q", 2,
+       "^interlin mesh: --max-elements needs --volume", {}},
+      {"mesh: --volume with an unknown kind", {m}, "mesh m.rf -o o.msh --volume prism -q", 2,
+       "^interlin mesh: --volume expects one of", {}},
+      {"mesh: --volume output with an unknown extension", {m},
+       "mesh m.rf -o o.csv --volume tet -q", 2, "unknown extension for --volume", {}},
       {"mesh: no body in the box",
        {file("m.rf", "box(-1,-1,-1,1,1,1);\nres = sphere(x - 5, y, z, 1);\n")},
        "mesh m.rf -o o.stl --resolution 8 -q", 1, "^interlin: m\\.rf: no surface in the box", {}},
+      // ---- implicit models (.ifl): eval and mesh read them like .rf models
+      {"eval: section body .ifl", {b, p}, "eval b.ifl p.csv -o o.csv --gradient -q", 0, "",
+       {"o.csv"}},
+      {"mesh: normalised model .ifl", {n}, "mesh n.ifl -o o.stl --resolution 8 -q", 0, "",
+       {"o.stl"}},
+      {"mesh: section body .ifl --volume hex", {b},
+       "mesh b.ifl -o o.vtu --volume hex --resolution 8 -q", 0, "", {"o.vtu"}},
+      {"eval: .ifl truncated", {file("b.ifl", body.substr(0, body.size() / 2)), p},
+       "eval b.ifl p.csv -q", 1, "^interlin: b\\.ifl:\\d+: .*the file ends before", {}},
+      {"eval: .ifl empty", {file("b.ifl", ""), p}, "eval b.ifl p.csv -q", 1,
+       "^interlin: b\\.ifl:1: unexpected end of file", {}},
+      {"eval: .ifl binary junk", {file("b.ifl", junk()), p}, "eval b.ifl p.csv -q", 1,
+       "^interlin: b\\.ifl:1: not an interlin implicit model file", {}},
+      {"eval: .ifl a directory", {directory("b.ifl"), p}, "eval b.ifl p.csv -q", 1,
+       "^interlin: b\\.ifl: cannot open: Is a directory", {}},
+      {"eval: .ifl of a newer version",
+       {file("b.ifl", replaced(body, "interlin-ifl 1\n", "interlin-ifl 2\n")), p},
+       "eval b.ifl p.csv -q", 1, "^interlin: b\\.ifl:1: container version 2 is newer", {}},
+      {"eval: .ifl of an unknown model kind",
+       {file("b.ifl", replaced(body, "block section_body", "block section_bodz")), p},
+       "eval b.ifl p.csv -q", 1, "^interlin: b\\.ifl:2: .*unknown model kind", {}},
+      {"eval: .ifl with a field of the wrong shape",
+       {file("b.ifl", replaced(body, "array edge_u f64 2 2\n", "array edge_u f64 4\n")), p},
+       "eval b.ifl p.csv -q", 1, "^interlin: b\\.ifl:2: .*array 'edge_u' must be 2 x 2, got 4", {}},
+      {"eval: .ifl with NaN in an array", {file("b.ifl", nan_in_array(body, "array box f64 6\n")), p},
+       "eval b.ifl p.csv -q", 1, "^interlin: b\\.ifl:\\d+: array box: value 0 is not finite", {}},
+      {"eval: .ifl with a NaN number",
+       {file("b.ifl", replaced(body, "number band_inner ", "number band_inner nan\nnumber x ")), p},
+       "eval b.ifl p.csv -q", 1, "^interlin: b\\.ifl:\\d+: number band_inner: 'nan' is not finite", {}},
+      {"eval: .ifl with --set", {b, p}, "eval b.ifl p.csv --set r=1 -q", 2,
+       "^interlin eval: --set and --var apply to R-function models \\(\\.rf\\) only", {}},
+      {"eval: .ifl whose model loads itself", {loop, p}, "eval l.ifl p.csv -q", 1,
+       "^interlin: .*l\\.ifl is being loaded already: ifl\\(\"\\.\\.\\.\"\\) calls in a cycle", {}},
+      {"eval: .rf calling ifl() of a model that loads itself",
+       {file("m.rf", model("res = ifl(\"l.ifl\");")), loop, p}, "eval m.rf p.csv -q", 1,
+       "^interlin: m\\.rf:2:\\d+: .*calls in a cycle", {}},
+      {"eval: .rf calling ifl() of a missing file", {file("m.rf", model("res = ifl(\"no.ifl\");")), p},
+       "eval m.rf p.csv -q", 1, "^interlin: m\\.rf:2:\\d+: .*no\\.ifl: cannot open: No such file", {}},
+      {"mesh: .ifl truncated", {file("b.ifl", body.substr(0, body.size() / 2))},
+       "mesh b.ifl -o o.stl -q", 1, "^interlin: b\\.ifl:\\d+: ", {}},
+      {"mesh: output is the .ifl", {b}, "mesh b.ifl -o b.ifl -q", 2,
+       "^interlin mesh: output 'b\\.ifl': unknown extension", {}},
+      // ---- implicit
+      {"implicit: sections BOM + CRLF", {file("s.csv", bom(crlf(sections())))},
+       "implicit s.csv -o o.ifl --resolution 8 -q", 0, "", {"o.ifl"}},
+      {"implicit: model BOM + CRLF", {file("m.rf", bom(crlf(ball())))},
+       "implicit m.rf -o o.ifl --resolution 8 -q", 0, "", {"o.ifl"}},
+      {"implicit: sections empty", {file("s.csv", "")}, "implicit s.csv -o o.ifl -q", 1,
+       "^interlin: s\\.csv: no data rows", {}},
+      {"implicit: sections binary junk", {file("s.csv", junk())}, "implicit s.csv -o o.ifl -q", 1,
+       "^interlin: s\\.csv:1: ", {}},
+      {"implicit: ragged rows", {file("s.csv", sections() + "3,0,1.5,0\n3,1,1,1,3,9\n")},
+       "implicit s.csv -o o.ifl -q", 1, "^interlin: s\\.csv:26: expected 5 comma-separated fields",
+       {}},
+      {"implicit: an .ifl given as sections", {b}, "implicit b.ifl -o o.ifl -q", 2,
+       "^interlin implicit: input 'b\\.ifl': unknown kind", {}},
+      {"loft: an .ifl given as sections", {b}, "loft b.ifl -o o.stl -q", 1,
+       "^interlin: b\\.ifl:1: no header", {}},
+      {"implicit: output is the input", {s}, "implicit s.csv -o s.csv -q", 2,
+       "^interlin implicit: output 's\\.csv': the model file must end in \\.ifl", {}},
+      {"implicit: model binary junk", {file("m.rf", junk())}, "implicit m.rf -o o.ifl -q", 1,
+       "^interlin: m\\.rf:1:1: unexpected byte 0x", {}},
       // ---- profile
       {"profile: JSON with BOM + CRLF", {file("p.json", bom(crlf(profile_json())))},
        "profile p.json -o o.csv -q", 0, "", {"o.csv"}},
@@ -382,11 +517,6 @@ std::vector<Case> cases() {
 }
 
 // ----------------------------------------------------------------------------- running --
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Every entry below `dir` (relative paths), directories included.
 std::set<std::string> listing(const fs::path& dir) {
@@ -472,7 +602,8 @@ TEST_CASE("limits: every help text states the defaults of limits.h", "[cli][tabl
   const std::string mesh = help("mesh");
   CHECK_THAT(mesh, Catch::Contains("(default " + std::to_string(mesh_triangles)) &&
                        Catch::Contains("(default " + std::to_string(grid_nodes)) &&
-                       Catch::Contains("(default " + std::to_string(model_size)));
+                       Catch::Contains("(default " + std::to_string(model_size)) &&
+                       Catch::Contains("(default " + std::to_string(volume_elements)));
   CHECK_THAT(help("eval"), Catch::Contains("(default " + std::to_string(model_size)));
   CHECK_THAT(help("profile"), Catch::Contains("(default " + std::to_string(profile_points)));
 }
