@@ -11,6 +11,7 @@
 #include "interlin/reconstruction/io/atomic_file.h"
 #include "interlin/reconstruction/io/section_csv.h"
 
+#include <cmath>
 #include <iostream>
 
 namespace interlin::cli {
@@ -65,6 +66,8 @@ Point clouds:
   --normal-neighbours K  neighbours of the normal estimation (default 16)
   --max-depth D          unstructured fit: octree levels (default 12)
   --threads T            worker threads (default: all cores)
+  --max-grid-nodes N     largest grid --resolution may ask for, (resolution + 5)^3 nodes
+                         as for a cube box (default 4000000, about 4 GB of memory)
   -q, --quiet            no progress lines on stderr
   -h, --help             this help
 
@@ -90,11 +93,23 @@ std::pair<double, double> band_option(const ParsedArgs& a) {
   return {b[0], b[1]};
 }
 
+// --resolution, within --max-grid-nodes: the grid is checked as if the box were a cube, since
+// its shape is known only after the loft or the model is built.
+int resolution_option(const ParsedArgs& a) {
+  const int r = parse_int("resolution", a.get("resolution", "96"), 8, 1024);
+  const double nodes = std::pow(r + 5.0, 3); // two cells beyond the box on each side
+  const long long max = limit_option(a, "max-grid-nodes", limits::implicit_grid_nodes);
+  if (nodes > double(max))
+    options_exceed("--resolution " + std::to_string(r),
+                   "a grid of up to " + fmt(nodes, 3) + " nodes", max, "max-grid-nodes");
+  return r;
+}
+
 } // namespace
 
 SectionBodyOptions section_body_options(const ParsedArgs& a, const Progress& progress) {
   SectionBodyOptions o;
-  o.resolution = parse_int("resolution", a.get("resolution", "96"), 8, 1024);
+  o.resolution = resolution_option(a);
   std::tie(o.band_inner, o.band_outer) = band_option(a);
   o.margin = parse_double("margin", a.get("margin", "0.05"));
   if (!(o.margin > 0 && o.margin <= 1))
@@ -165,7 +180,7 @@ void rf_job(const ParsedArgs& a, const std::string& input, const std::string& ou
     throw UsageError("--margin applies to sections only (an R-function model has its own box)");
   refuse(a, kCloudOptions, "applies to point clouds only (this input is an R-function model)");
   NormalizeOptions o;
-  o.resolution = parse_int("resolution", a.get("resolution", "96"), 8, 1024);
+  o.resolution = resolution_option(a);
   o.mesh_resolution = parse_int("mesh-resolution", a.get("mesh-resolution", "0"), 0, 4096);
   std::tie(o.band_inner, o.band_outer) = band_option(a);
   o.threads = parse_int("threads", a.get("threads", "0"), 0, 4096);
@@ -230,7 +245,8 @@ int run_implicit(int argc, const char* const* argv) {
                       {"outlier-ratio", 0, true, false},
                       {"voxel", 0, true, false},
                       {"normal-neighbours", 0, true, false},
-                      {"max-depth", 0, true, false}},
+                      {"max-depth", 0, true, false},
+                      {"max-grid-nodes", 0, true, false}},
                      implicit_main);
 }
 

@@ -454,6 +454,11 @@ std::vector<Case> cases() {
        "^interlin: b\\.ifl:1: no header", {}},
       {"implicit: output is the input", {s}, "implicit s.csv -o s.csv -q", 2,
        "^interlin implicit: output 's\\.csv': the model file must end in \\.ifl", {}},
+      {"implicit: --resolution 1024", {s}, "implicit s.csv -o o.ifl --resolution 1024 -q", 2,
+       "^interlin implicit: --resolution 1024: asks for a grid of up to .* nodes, more than the "
+       "limit of 4000000 \\(raise it with --max-grid-nodes N\\)", {}},
+      {"implicit: --resolution 200 of a model", {m}, "implicit m.rf -o o.ifl --resolution 200 -q", 2,
+       "--max-grid-nodes", {}},
       {"implicit: model binary junk", {file("m.rf", junk())}, "implicit m.rf -o o.ifl -q", 1,
        "^interlin: m\\.rf:1:1: unexpected byte 0x", {}},
       // ---- profile
@@ -606,4 +611,5 @@ TEST_CASE("limits: every help text states the defaults of limits.h", "[cli][tabl
                        Catch::Contains("(default " + std::to_string(volume_elements)));
   CHECK_THAT(help("eval"), Catch::Contains("(default " + std::to_string(model_size)));
   CHECK_THAT(help("profile"), Catch::Contains("(default " + std::to_string(profile_points)));
+  CHECK_THAT(help("implicit"), Catch::Contains("(default " + std::to_string(implicit_grid_nodes)));
 }

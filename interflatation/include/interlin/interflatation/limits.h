@@ -44,6 +44,10 @@ inline constexpr long long grid_nodes = 1'100'000'000;
 // hexahedron (a box-filling cuboid at resolutions 24 to 64), so at most about 2.2 GB or 4.5 GB;
 // --max-elements.
 inline constexpr long long volume_elements = 14'000'000;
+// interlin implicit, memory: nodes of the model's grid, counted before any work as for a cube
+// box, (resolution + 5)^3 (the grid reaches two cells beyond the box). Building a section body
+// peaks at about 1 KB per node (resolutions 32 to 128), so about 4 GB; --max-grid-nodes.
+inline constexpr long long implicit_grid_nodes = 4'000'000;
 // interlin profile, memory and time: profile points written, stations x points per profile;
 // --max-points.
 inline constexpr long long profile_points = 10'000'000;
