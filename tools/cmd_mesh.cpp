@@ -87,8 +87,8 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
                          F >= 0 for hexahedra): reproduces its published counts
   --smooth K             K sweeps of functional (12) over the boundary nodes
   --max-elements N       most elements the grid may hold, 6 tetrahedra or 1 hexahedron
-                         per cell (default 14000000: about 2.2 GB of memory for
-                         tetrahedra, 4.5 GB for hexahedra)
+                         per cell (default 25000000 tetrahedra, 12500000 hexahedra:
+                         about 4 GB of memory when the body fills the grid)
   The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
   inverted elements (an error unless 0), max |F| at the boundary nodes and the volume.
   interlin mesh data/models/body11.rf -o body11.msh -o body11.vtu --volume tet --resolution 40
@@ -129,8 +129,10 @@ void check_grid_limits(const ParsedArgs& a, const Eigen::AlignedBox3d& box,
     options_exceed(asked, "a grid of " + fmt(n, 3) + " nodes", max_nodes, "max-grid-nodes");
   if (!a.has("volume"))
     return;
-  const double elements = n * (a.get("volume") == "hex" ? 1 : 6);
-  const long long max_elements = limit_option(a, "max-elements", limits::volume_elements);
+  const bool hex = a.get("volume") == "hex";
+  const double elements = n * (hex ? 1 : 6);
+  const long long max_elements =
+      limit_option(a, "max-elements", hex ? limits::volume_hexahedra : limits::volume_tetrahedra);
   if (elements > double(max_elements))
     options_exceed(asked, "up to " + fmt(elements, 3) + " volume elements", max_elements,
                    "max-elements");

@@ -608,7 +608,8 @@ TEST_CASE("limits: every help text states the defaults of limits.h", "[cli][tabl
   CHECK_THAT(mesh, Catch::Contains("(default " + std::to_string(mesh_triangles)) &&
                        Catch::Contains("(default " + std::to_string(grid_nodes)) &&
                        Catch::Contains("(default " + std::to_string(model_size)) &&
-                       Catch::Contains("(default " + std::to_string(volume_elements)));
+                       Catch::Contains("(default " + std::to_string(volume_tetrahedra)) &&
+                       Catch::Contains(std::to_string(volume_hexahedra) + " hexahedra"));
   CHECK_THAT(help("eval"), Catch::Contains("(default " + std::to_string(model_size)));
   CHECK_THAT(help("profile"), Catch::Contains("(default " + std::to_string(profile_points)));
   CHECK_THAT(help("implicit"), Catch::Contains("(default " + std::to_string(implicit_grid_nodes)));

@@ -40,10 +40,11 @@ inline constexpr long long mesh_triangles = 20'000'000;
 // box at --resolution 1024 fits); --max-grid-nodes.
 inline constexpr long long grid_nodes = 1'100'000'000;
 // interlin mesh --volume, memory: elements the grid's cells could hold (6 tetrahedra or 1
-// hexahedron per cell). The command peaks at about 160 bytes per tetrahedron and 320 per
-// hexahedron (a box-filling cuboid at resolutions 24 to 64), so at most about 2.2 GB or 4.5 GB;
-// --max-elements.
-inline constexpr long long volume_elements = 14'000'000;
+// hexahedron per cell; an upper bound, checked before any work). The command peaks at about 160
+// bytes per tetrahedron and 320 per hexahedron (a box-filling cuboid at resolutions 24 to 64), so
+// both defaults mean about 4 GB when the body fills the grid; --max-elements.
+inline constexpr long long volume_tetrahedra = 25'000'000;
+inline constexpr long long volume_hexahedra = 12'500'000;
 // interlin implicit, memory: nodes of the model's grid, counted before any work as for a cube
 // box, (resolution + 5)^3 (the grid reaches two cells beyond the box). Building a section body
 // peaks at about 1 KB per node (resolutions 32 to 128), so about 4 GB; --max-grid-nodes.
