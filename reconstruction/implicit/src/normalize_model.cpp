@@ -66,7 +66,7 @@ NormalizeBuild normalize_model(const std::string& rf_path, const ModelOptions& m
   M.source = read_input_file(rf_path);
   M.path = std::filesystem::absolute(rf_path).lexically_normal().string();
   M.options = mo;
-  const ImplicitFunction F = parse_model(M.source, M.path, mo);
+  const ImplicitFunction F = parse_model(M.source, rf_path, mo); // messages name the file as given
   M.box = F.box;
 
   ImplicitMeshOptions mesh;
