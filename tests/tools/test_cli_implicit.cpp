@@ -172,7 +172,7 @@ TEST_CASE("CLI implicit: usage and input errors, no output file", "[cli][implici
   write_file(d / "broken.ifl", "interlin-ifl 1\nblock section_body model\nnumber version 1\n");
   write_file(d / "p.csv", "x,y,z\n0,0,0\n");
   expect_error(run("eval " + d / "broken.ifl " + d / "p.csv -q"), 1,
-               "broken.ifl:3: unexpected end");
+               "broken.ifl:4: unexpected end");
   write_file(d / "wrong.ifl", "interlin-ifl 1\nblock section_body model\nnumber version 1\nend\n");
   expect_error(run("eval " + d / "wrong.ifl " + d / "p.csv -q"), 1,
                "wrong.ifl:2: block section_body model: missing array 'box'");
