@@ -10,7 +10,9 @@
 #include "interlin/reconstruction/io/mesh_io.h"
 #include "interlin/reconstruction/io/preview.h"
 #include "interlin/reconstruction/io/section_csv.h"
+#include "interlin/reconstruction/io/step.h"
 #include "interlin/reconstruction/io/surface_json.h"
+#include "interlin/reconstruction/loft/end_caps.h"
 #include "interlin/reconstruction/loft/guided_loft.h"
 #include "interlin/reconstruction/loft/holdout.h"
 #include "interlin/reconstruction/loft/loft.h"
@@ -38,6 +40,7 @@ order) or plain x y z lines with blank lines between sections (docs/formats.md).
 Outputs (-o, repeatable, format by extension; units = input units):
   .stl .obj .ply .off   triangle mesh of the surface (binary STL/PLY)
   .igs .iges            IGES 5.3, one rational B-spline surface (entity 128)
+  .step .stp            STEP AP214: one B-spline face, with --cap one closed solid
   .json                 the surface: degrees, knots, control points (+ metadata)
   .png                  shaded 3/4 preview with the input sections drawn on it
   .csv                  per-point report: exactness deviation (or hold-out distance)
@@ -64,7 +67,7 @@ Options:
                              point correspondence between sections (default auto: index
                              when the sections have equal point counts)
   --param chord|centripetal  parameters along each section (default chord)
-  --units mm|cm|m|in         unit label written to IGES (coordinates are not scaled)
+  --units mm|cm|m|in         unit written to IGES and STEP (coordinates are not scaled)
   --mesh-precision double|single
                              coordinates in .ply and .obj files (default double: exact;
                              .stl is single precision by definition, .off too)
@@ -91,6 +94,7 @@ section withheld in turn, the exact distance of its points to the loft of the ot
 Examples:
   interlin loft data/rotor37/sections.csv -o out/rotor37.stl -o out/rotor37.igs --units cm
   interlin loft blade.csv -o blade.stl --cap --samples 600,200 --align le
+  interlin loft data/rotor37/sections.csv -o blade.step --cap --units cm
   interlin loft blade.csv -o blade.igs --span station --span-degree 5
   interlin loft data/rotor37/sections.csv --holdout 2 -o holdout.csv
   interlin loft data/rotor37/sections.csv --guides edges.csv -o blade.igs --units cm
@@ -224,6 +228,20 @@ void write_iges_file(const std::string& path, const LoftJob& job, const LoftRun&
   write_iges(path, run.loft.surface, io);
 }
 
+// With --cap the lateral face and the two ruled end caps as one closed shell (a solid).
+void write_step_file(const std::string& path, const LoftJob& job, const LoftRun& run, const Mesh&) {
+  StepOptions so;
+  so.unit = job.unit;
+  so.description = "interlin loft of " + job.input;
+  const BSplineSurface& s = run.loft.surface;
+  if (!job.cap) {
+    write_step(path, s, nullptr, so);
+    return;
+  }
+  const std::array<StepCap, 2> caps{end_cap(s, false), end_cap(s, true)};
+  write_step(path, s, &caps, so);
+}
+
 std::string joined(const Eigen::VectorXd& x) {
   std::ostringstream s;
   s.precision(17);
@@ -281,6 +299,7 @@ const std::vector<OutputFormat>& output_formats() {
   static const std::vector<OutputFormat> formats = {
       {{".stl", ".obj", ".ply", ".off"}, true, write_mesh_file},
       {{".igs", ".iges"}, false, write_iges_file},
+      {{".step", ".stp"}, false, write_step_file},
       {{".json"}, false, write_json_file},
       {{".png"}, true, write_png_file},
       {{".csv"}, false, write_report},

@@ -312,6 +312,8 @@ std::vector<Case> cases() {
        "^interlin loft: output 'o\\.stl' given twice", {}},
       {"loft: output directory missing", {s}, "loft s.csv -o o.stl -o no/o.igs -q", 1,
        "^interlin: cannot write no/o\\.igs: directory no does not exist", {}},
+      {"loft: STEP output directory missing", {s}, "loft s.csv -o o.stl -o no/o.step --cap -q", 1,
+       "^interlin: cannot write no/o\\.step: directory no does not exist", {}},
       {"loft: output is a directory", {s, directory("o.stl")}, "loft s.csv -o o.stl -q", 1,
        "^interlin: cannot write o\\.stl: it is a directory", {}},
       {"loft: output below a file", {s}, "loft s.csv -o s.csv/o.stl -q", 1,

@@ -73,13 +73,18 @@ TEST_CASE("CLI: the main job writes every output and reports exactness", "[cli]"
   TempDir d("cli");
   const Run r = run("loft " INTERLIN_DATA_DIR "/rotor37/sections.csv -o " + (d / "b.stl") + " -o " +
                     (d / "b.igs") + " -o " + (d / "b.json") + " -o " + (d / "b.png") + " -o " +
-                    (d / "b.obj") + " --units cm --cap -q");
+                    (d / "b.obj") + " -o " + (d / "b.step") + " --units cm --cap -q");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.empty()); // -q: nothing on stderr
   CHECK_THAT(r.out, Catch::Contains("13 (2574 points)") && Catch::Contains("watertight"));
-  for (const char* f : {"b.stl", "b.igs", "b.json", "b.png", "b.obj"})
+  for (const char* f : {"b.stl", "b.igs", "b.json", "b.png", "b.obj", "b.step"})
     CHECK(fs::file_size(d / f) > 1000);
+  // --cap: the STEP file is one solid (OpenCASCADE reads it back in test_occt_step), in cm.
+  const std::string step = slurp(d / "b.step");
+  CHECK_THAT(step, Catch::StartsWith("ISO-10303-21;") && Catch::Contains("MANIFOLD_SOLID_BREP") &&
+                       Catch::Contains("CLOSED_SHELL") &&
+                       Catch::Contains("SI_UNIT(.CENTI.,.METRE.)"));
   CHECK(slurp(d / "b.png").substr(1, 3) == "PNG");
   CHECK(slurp(d / "b.igs").find("128,") != std::string::npos);
   // Deterministic: the same run gives the same bytes.
