@@ -26,29 +26,6 @@ struct CloudModel {
   CloudFitInfo info;
 };
 
-py::dict info_dict(const CloudFitInfo& i) {
-  return fields_dict(i, field("noise", &CloudFitInfo::noise),
-                     field("noise_estimated", &CloudFitInfo::noise_estimated),
-                     field("cells", &CloudFitInfo::cells), field("leaves", &CloudFitInfo::leaves),
-                     field("two_sheet_leaves", &CloudFitInfo::two_sheet_leaves),
-                     field("far_leaves", &CloudFitInfo::far_leaves),
-                     field("depth", &CloudFitInfo::depth),
-                     field("rms_distance", &CloudFitInfo::rms_distance),
-                     field("max_distance", &CloudFitInfo::max_distance),
-                     field("within_3_sigma", &CloudFitInfo::within_3_sigma),
-                     field("flipped", &CloudFitInfo::flipped));
-}
-
-py::dict report_dict(const CloudPrepReport& r) {
-  return fields_dict(
-      r, field("read", &CloudPrepReport::read), field("distinct", &CloudPrepReport::distinct),
-      field("outliers", &CloudPrepReport::outliers), field("kept", &CloudPrepReport::kept),
-      field("normals_estimated", &CloudPrepReport::normals_estimated),
-      field("normals_reoriented", &CloudPrepReport::normals_reoriented),
-      field("disagreement", &CloudPrepReport::disagreement),
-      field("components", &CloudPrepReport::components));
-}
-
 void bind_cloud_io(py::module_& m) {
   py::class_<PointCloud>(m, "PointCloud", R"(A point cloud: points (N, 3) and unit normals (N, 3),
 or (0, 3) without normals. PointCloud(points, normals=None).)")
@@ -151,7 +128,7 @@ void bind_cloud_steps(py::module_& m) {
           py::gil_scoped_release release;
           c = prepare_cloud(path, cloud, o, &report, &notes);
         }
-        return py::make_tuple(std::move(c), report_dict(report), notes);
+        return py::make_tuple(std::move(c), cloud_report_dict(report), notes);
       },
       py::arg("cloud"), py::arg("path") = "<cloud>", py::arg("outlier_neighbours") = 16,
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
@@ -167,7 +144,7 @@ void bind_cloud_fit(py::module_& m) {
 (Ohtake et al. 2003): function (Implicit: F > 0 inside), info (dict: noise, leaves, depth,
 rms_distance, max_distance, within_3_sigma, ...), leaves (number of local fits).)")
       .def_readonly("function", &CloudModel::function)
-      .def_property_readonly("info", [](const CloudModel& c) { return info_dict(c.info); })
+      .def_property_readonly("info", [](const CloudModel& c) { return cloud_fit_dict(c.info); })
       .def_property_readonly("leaves", [](const CloudModel& c) { return c.model->fits.size(); })
       .def_property_readonly("box", [](const CloudModel& c) { return box_to_array(c.model->box); });
   m.def(
@@ -191,6 +168,29 @@ rms_distance, max_distance, within_3_sigma, ...), leaves (number of local fits).
 }
 
 } // namespace
+
+py::dict cloud_fit_dict(const CloudFitInfo& i) {
+  return fields_dict(i, field("noise", &CloudFitInfo::noise),
+                     field("noise_estimated", &CloudFitInfo::noise_estimated),
+                     field("cells", &CloudFitInfo::cells), field("leaves", &CloudFitInfo::leaves),
+                     field("two_sheet_leaves", &CloudFitInfo::two_sheet_leaves),
+                     field("far_leaves", &CloudFitInfo::far_leaves),
+                     field("depth", &CloudFitInfo::depth),
+                     field("rms_distance", &CloudFitInfo::rms_distance),
+                     field("max_distance", &CloudFitInfo::max_distance),
+                     field("within_3_sigma", &CloudFitInfo::within_3_sigma),
+                     field("flipped", &CloudFitInfo::flipped));
+}
+
+py::dict cloud_report_dict(const CloudPrepReport& r) {
+  return fields_dict(
+      r, field("read", &CloudPrepReport::read), field("distinct", &CloudPrepReport::distinct),
+      field("outliers", &CloudPrepReport::outliers), field("kept", &CloudPrepReport::kept),
+      field("normals_estimated", &CloudPrepReport::normals_estimated),
+      field("normals_reoriented", &CloudPrepReport::normals_reoriented),
+      field("disagreement", &CloudPrepReport::disagreement),
+      field("components", &CloudPrepReport::components));
+}
 
 void bind_clouds(py::module_& m) {
   bind_cloud_io(m);

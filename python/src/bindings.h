@@ -17,6 +17,8 @@
 #include <pybind11/stl.h>
 
 #include "interlin/interflatation/implicit_function.h"
+#include "interlin/reconstruction/clouds/cloud_implicit.h"
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
 #include "interlin/reconstruction/io/mesh_io.h"
 #include "interlin/reconstruction/io/section_csv.h"
 #include "interlin/reconstruction/loft/guided_loft.h"
@@ -109,6 +111,10 @@ py::dict fields_dict(const S& s, const std::pair<const char*, T S::*>&... fields
   ((d[fields.first] = s.*(fields.second)), ...);
   return d;
 }
+
+// What prepare_cloud reports and what fit_cloud_implicit measured, as dicts (bind_clouds.cpp).
+py::dict cloud_report_dict(const CloudPrepReport& r);
+py::dict cloud_fit_dict(const CloudFitInfo& i);
 
 // The path of a str or os.PathLike, else nullopt (bind_loft.cpp).
 std::optional<std::string> path_of(const py::handle& o);

@@ -2,6 +2,7 @@
 #include "bindings.h"
 
 #include "interlin/interflatation/input_error.h"
+#include "interlin/reconstruction/clouds/cloud_implicit_ifl.h"
 
 #include <numeric>
 #include <sstream>
@@ -62,6 +63,8 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = INTERLIN_VERSION;
   // Bad user input (files): the message is the CLI's one line "FILE:LINE: what is wrong".
   py::register_exception<interlin::InputError>(m, "InputError", PyExc_ValueError);
+  // .ifl files of point clouds (`interlin implicit SCAN.ply`) load like the CLI's.
+  interlin::register_cloud_ifl_kind();
   bind_splines(m);
   bind_curves(m);
   bind_interlineation(m);
