@@ -1,14 +1,17 @@
 // Python bindings of interflatation/operators: box and grid interflatation (seed 001 §2.8, digest
 // 001 §5 items 1 and 4) with Python callables as plane traces, Theorem 4 on plane regions (seed
-// 001 §2.7) with a Python target u and implicit, polygon or B-spline boundaries, and the
+// 001 §2.7) and Theorem 5 on bodies (seed 001 §2.8) with a Python target u and implicit,
+// polygon or B-spline boundaries, their free traces fitted by least squares or min-max, and the
 // tricubic grid interpolant.
 #include "bindings.h"
 
 #include "interlin/interflatation/implicit_function.h"
 #include "interlin/interflatation/operators/cubic_grid.h"
+#include "interlin/interflatation/operators/free_traces.h"
 #include "interlin/interflatation/operators/grid_interflatation.h"
 #include "interlin/interflatation/operators/plane_boundary.h"
 #include "interlin/interflatation/operators/region_interlineation.h"
+#include "interlin/interflatation/operators/solid_interflatation.h"
 
 #include <array>
 #include <bit>
@@ -109,11 +112,13 @@ private:
   std::unordered_map<Key<D>, double, KeyHash<D>> table_;
 };
 
-// An operator with the batched Python functions it calls.
+// An operator with the batched Python functions it calls; coefficients: the free traces' c
+// when fitted (fit_free_traces), else empty.
 template <class Op, int D>
 struct PythonOperator {
   Op op;
   std::vector<std::shared_ptr<BatchedFunction<D>>> functions;
+  VectorXd coefficients;
 };
 
 // op at every row of P (N, dim): two passes (BatchedFunction). Output (N,).
@@ -137,6 +142,34 @@ std::shared_ptr<BatchedFunction<D>> batched(const py::object& f) {
   if (!PyCallable_Check(f.ptr()))
     throw py::type_error("expected a callable of NumPy arrays");
   return std::make_shared<BatchedFunction<D>>(f.cast<py::function>());
+}
+
+// The operator O with its free traces u = w (1 + sum c_k phi_k) fitted to the Python target w
+// at the rows of `samples` (free_traces.h). Two passes, as evaluate_rows: the fit asks for w at
+// points that do not depend on w's values.
+template <class Op, int D>
+PythonOperator<Op, D> fit_python(const PythonOperator<Op, D>& O, const py::object& w,
+                                 const MatrixXd& samples, const std::string& criterion) {
+  require_shape(samples, D, "samples", 1);
+  const TraceCriterion c = choice<TraceCriterion>(
+      {{"least_squares", TraceCriterion::least_squares}, {"min_max", TraceCriterion::min_max}},
+      criterion, "criterion");
+  using Point = Eigen::Matrix<double, D, 1>;
+  const Eigen::Matrix<double, Eigen::Dynamic, D> S = samples;
+  PythonOperator<Op, D> out;
+  auto b = batched<D>(w);
+  out.functions.push_back(b);
+  const std::function<double(const Point&)> wf = [b](const Point& p) {
+    std::array<double, D> a;
+    for (int d = 0; d < D; ++d)
+      a[static_cast<size_t>(d)] = p(d);
+    return (*b)(a);
+  };
+  b->record();
+  fit_free_traces(O.op, wf, S, c);
+  b->fetch();
+  out.op = fit_free_traces(O.op, wf, S, c, &out.coefficients);
+  return out;
 }
 
 // Chords of a boundary computed once per line (Theorem 4 asks for the same lines many times;
@@ -340,6 +373,7 @@ other coordinates s; O.cell_kinds() the pieces' kinds and their counts.)")
                  ++count[cell_kind_name(p.kind)];
              return count;
            })
+      .def_readonly("coefficients", &Region::coefficients)
       .def_property_readonly("x", [](const Region& O) { return O.op.x; })
       .def_property_readonly("y", [](const Region& O) { return O.op.y; });
   m.def(
@@ -365,6 +399,169 @@ u(x, y)   the function whose restrictions are the free traces (NumPy arrays in, 
           e.g. the distance to dG or an R-function: Ou interpolates it on every grid line
 samples   probes per cell for changes of the chord structure
 ValueError for fewer than 2 lines, non-increasing lines or lines that do not cover the box.)");
+}
+
+// A body's chords computed once per line and interval (Theorem 5 asks for the same lines many
+// times; an implicit body given in Python costs hundreds of calls per line).
+SolidBoundary cached(SolidBoundary b) {
+  struct Cache {
+    std::mutex m;
+    std::unordered_map<Key<5>, std::vector<double>, KeyHash<5>> lines;
+  };
+  auto cache = std::make_shared<Cache>();
+  b.chords = [chords = std::move(b.chords), cache](int axis, const Vector3d& p, double lo,
+                                                   double hi) {
+    const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
+    const Key<5> k{static_cast<std::uint64_t>(axis), std::bit_cast<std::uint64_t>(p(a1)),
+                   std::bit_cast<std::uint64_t>(p(a2)), std::bit_cast<std::uint64_t>(lo),
+                   std::bit_cast<std::uint64_t>(hi)};
+    {
+      std::lock_guard<std::mutex> lock(cache->m);
+      const auto it = cache->lines.find(k);
+      if (it != cache->lines.end())
+        return it->second;
+    }
+    std::vector<double> r = chords(axis, p, lo, hi);
+    std::lock_guard<std::mutex> lock(cache->m);
+    cache->lines.emplace(k, r);
+    return r;
+  };
+  return b;
+}
+
+// g as a function of a point: an Implicit (evaluated in C++) or a Python callable g(x, y, z)
+// of floats.
+std::function<double(const Vector3d&)> body_function(const py::object& g) {
+  if (py::isinstance<ImplicitFunction>(g)) {
+    const auto f = std::make_shared<const ImplicitFunction>(g.cast<ImplicitFunction>());
+    return [f](const Vector3d& p) {
+      Points3 P = p.transpose();
+      VectorXd F(1);
+      f->value(P, F);
+      return F(0);
+    };
+  }
+  if (!PyCallable_Check(g.ptr()))
+    throw py::type_error("g: expected an Implicit or a callable g(x, y, z)");
+  const auto f = std::make_shared<PythonCallable>(PythonCallable{g.cast<py::function>()});
+  return [f](const Vector3d& p) {
+    py::gil_scoped_acquire gil;
+    return f->f(p(0), p(1), p(2)).cast<double>();
+  };
+}
+
+const char* solid_kind_name(SolidCellKind k) {
+  switch (k) {
+  case SolidCellKind::box:
+    return "box";
+  case SolidCellKind::curved_box:
+    return "curved_box";
+  case SolidCellKind::pyramid:
+    return "pyramid";
+  case SolidCellKind::split:
+    return "split";
+  }
+  return "?";
+}
+
+void bind_solid(py::module_& m) {
+  py::class_<SolidBoundary>(m, "SolidBoundary", R"(A body G for Theorem 5: box (2, 3) and
+chords(axis, p, lo, hi): the intervals (lo0, hi0, lo1, hi1, ...) of the line through p along
+`axis` inside G, clipped to [lo, hi]. From solid_boundary.)")
+      .def_property_readonly("box", [](const SolidBoundary& b) { return box_to_array(b.box); })
+      .def(
+          "chords",
+          [](const SolidBoundary& b, int axis, const Vector3d& p, double lo, double hi) {
+            if (axis < 0 || axis > 2)
+              throw py::value_error("axis: expected 0, 1 or 2");
+            return b.chords(axis, p, lo, hi);
+          },
+          py::arg("axis"), py::arg("p"), py::arg("lo"), py::arg("hi"));
+  m.def(
+      "solid_boundary",
+      [](const py::object& g, const MatrixXd& box, int samples) {
+        return cached(implicit_solid(body_function(g), box_from_array(box), samples));
+      },
+      py::arg("g"), py::arg("box"), py::arg("samples") = 8,
+      R"(G = {g > 0} inside box (2, 3) [[xmin, ymin, zmin], [xmax, ymax, zmax]]. g: an Implicit
+(e.g. rf.compile(...), load_model(...): evaluated in C++) or a callable g(x, y, z) of floats.
+The chords of a line are the runs of g > 0 among `samples` points per cell side, their ends
+refined by bisection, computed once per line. ValueError for samples < 2 or an empty box.)");
+
+  using Solid = PythonOperator<SolidInterflatation, 3>;
+  py::class_<Solid>(m, "SolidInterflatation", R"(Theorem 5 of seed 001 (§2.8): the interflatation
+operator of a body G with grid planes and the seed's zero substitution on dG. Ou = 0 on dG for
+any u (the implicit equation Ou = 0 of dG), Ou = u on every grid plane inside G when u = 0 on
+dG, Ou = 0 outside G. O(P) for points P (N, 3) -> (N,); O.cell_kind(P) the kind of the piece
+holding each point ("box", "curved_box", "pyramid", "split"); nodes; coefficients (the free
+traces' c after fit_free_traces, one per grid node, x fastest; else empty).)")
+      .def(
+          "__call__",
+          [](Solid& O, const MatrixXd& P) {
+            return evaluate_rows<SolidInterflatation, 3, 3>(O, P, "P");
+          },
+          py::arg("P"))
+      .def(
+          "cell_kind",
+          [](const Solid& O, const MatrixXd& P) {
+            require_shape(P, 3, "P");
+            std::vector<std::string> kinds;
+            for (Index i = 0; i < P.rows(); ++i)
+              kinds.emplace_back(solid_kind_name(cell_kind(O.op, P.row(i).transpose())));
+            return kinds;
+          },
+          py::arg("P"))
+      .def_property_readonly("nodes",
+                             [](const Solid& O) {
+                               const auto& n = O.op.nodes;
+                               return py::make_tuple(n[0], n[1], n[2]);
+                             })
+      .def_readonly("coefficients", &Solid::coefficients);
+  m.def(
+      "solid_interflatation",
+      [](const SolidBoundary& boundary, const std::array<VectorXd, 3>& nodes, const py::object& u,
+         int mapping_axis, int samples) {
+        Solid O;
+        auto b = batched<3>(u);
+        O.functions.push_back(b);
+        O.op = solid_interflatation(
+            boundary, nodes,
+            [b](const Vector3d& p) {
+              return (*b)({p(0), p(1), p(2)});
+            },
+            mapping_axis, samples);
+        return O;
+      },
+      py::arg("boundary"), py::arg("nodes"), py::arg("u"), py::arg("mapping_axis") = -1,
+      py::arg("samples") = 12,
+      R"(Theorem 5 operator -> SolidInterflatation.
+boundary      a SolidBoundary (solid_boundary)
+nodes         [x, y, z]: per axis the increasing plane positions covering boundary.box (>= 2)
+u(x, y, z)    the function whose restrictions are the traces (NumPy arrays in, array out), e.g.
+              the distance to dG or an R-function: Ou interpolates it on every grid plane
+mapping_axis  0, 1, 2: the chords' axis in every cell; -1: per cell, the axis with the fewest
+              chord structures
+samples       probes per cell side for the cross-sections
+ValueError for fewer than 2 planes, non-increasing planes, planes that do not cover the box or a
+mapping axis outside -1 .. 2.)");
+  m.def(
+      "fit_free_traces",
+      [](const Solid& O, const py::object& w, const MatrixXd& samples,
+         const std::string& criterion) { return fit_python(O, w, samples, criterion); },
+      py::arg("O"), py::arg("w"), py::arg("samples"), py::arg("criterion") = "least_squares",
+      R"(The free traces of Theorem 5 chosen by a criterion (seed 001 §2.8: rho(Ou, w) -> min):
+u = w (1 + sum_k c_k phi_k), phi_k the trilinear hats of the grid nodes, c fitted at the points
+`samples` (S, 3) of G: "least_squares" (min sum (Ou - w)^2) or "min_max" (min max |Ou - w|,
+Lawson's iteration; never worse than c = 0 on the samples). O: built with u = w.
+w(x, y, z): NumPy arrays in, array out. -> SolidInterflatation (c in .coefficients).)");
+  m.def(
+      "fit_free_traces",
+      [](const PythonOperator<RegionInterlineation, 2>& O, const py::object& w,
+         const MatrixXd& samples,
+         const std::string& criterion) { return fit_python(O, w, samples, criterion); },
+      py::arg("O"), py::arg("w"), py::arg("samples"), py::arg("criterion") = "least_squares",
+      R"(The free traces of Theorem 4 chosen by a criterion (seed 001 §2.7): as above with the
+bilinear hats of the grid nodes, samples (S, 2), w(x, y) -> RegionInterlineation.)");
 }
 
 void bind_cubic_grid(py::module_& m) {
@@ -407,6 +604,7 @@ void bind_interflatation(py::module_& m) {
   bind_grid(m);
   bind_boundaries(m);
   bind_region(m);
+  bind_solid(m);
   bind_cubic_grid(m);
 }
 
