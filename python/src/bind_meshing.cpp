@@ -1,7 +1,9 @@
 // Python bindings of reconstruction/meshing: implicit bodies to closed meshes and to volume
-// meshes, mesh checks, smoothing on the surface, loop triangulation.
+// meshes and their adaptive refinement (seed 003 §7.2), mesh checks, smoothing on the surface,
+// loop triangulation.
 #include "bindings.h"
 
+#include "interlin/reconstruction/meshing/adaptive_refinement.h"
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
@@ -62,6 +64,79 @@ py::dict quality_dict(const VolumeQuality& q) {
                      field("outside_10_170", &VolumeQuality::outside_10_170));
 }
 
+py::dict refinement_dict(const RefinementReport& r) {
+  return fields_dict(r, field("flagged", &RefinementReport::flagged),
+                     field("refined_nodes", &RefinementReport::refined_nodes),
+                     field("split", &RefinementReport::split),
+                     field("new_nodes", &RefinementReport::new_nodes),
+                     field("projected", &RefinementReport::projected));
+}
+
+// Tetrahedra (E, 4) and boundary flags (N,) as the refinement takes them; ValueError otherwise.
+std::vector<char> refinement_input(const MatrixXd& V, const MatrixXi& C,
+                                   const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary) {
+  require_shape(V, 3, "V");
+  if (C.cols() != 4)
+    throw py::value_error("C: expected an (E, 4) array of tetrahedra");
+  if (boundary.size() != V.rows())
+    throw py::value_error("boundary: expected one flag per node of V");
+  return std::vector<char>(boundary.data(), boundary.data() + boundary.size());
+}
+
+py::tuple refined_mesh(MatrixXd V, MatrixXi C, const std::vector<char>& b, py::object extra) {
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> on_boundary(static_cast<Eigen::Index>(b.size()));
+  for (size_t i = 0; i < b.size(); ++i)
+    on_boundary(static_cast<Eigen::Index>(i)) = b[i] != 0;
+  return py::make_tuple(std::move(V), std::move(C), std::move(on_boundary), std::move(extra));
+}
+
+void bind_refinement(py::module_& m) {
+  m.def("refinement_indicator", &refinement_indicator, py::arg("C"), py::arg("values"),
+        release_gil(),
+        R"(Seed 003's indicator (digest §7.2): max |C_i - C_j| over each element's nodes over the
+range of the nodal quantity values (N,) -> (E,) in [0, 1]. C (E, k) elements of any kind.)");
+  m.def(
+      "refine_tetrahedra",
+      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
+         Eigen::VectorXd values, double delta, const std::optional<ImplicitFunction>& f) {
+        std::vector<char> b = refinement_input(V, C, boundary);
+        const RefinementReport r =
+            refine_tetrahedra(V, C, b, values, delta, f ? *f : ImplicitFunction{});
+        return refined_mesh(std::move(V), std::move(C), b,
+                            py::make_tuple(std::move(values), refinement_dict(r)));
+      },
+      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("values"), py::arg("delta"),
+      py::arg("f") = py::none(),
+      R"(One pass of seed 003's conforming 2-refinement of tetrahedra (interlin mesh --volume
+--adapt): elements with indicator > delta, their vertex neighbours' vertices refined, edges
+halved iff both ends are refined (templates of 2, 4, 8 children; no hanging nodes); new nodes
+on boundary facet edges projected onto F = 0 when the body f (Implicit) is given.
+V (N, 3), C (E, 4) positive tetrahedra, boundary (N,) bool, values (N,) nodal quantity ->
+(V (N', 3), C (E', 4) int32, boundary (N',), (values (N',): midpoints the mean of their edge's
+ends, report dict: flagged, refined_nodes, split, new_nodes, projected)).)");
+  m.def(
+      "adapt_tetrahedra",
+      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
+         const py::function& field, double delta, int iterations,
+         const std::optional<ImplicitFunction>& f) {
+        std::vector<char> b = refinement_input(V, C, boundary);
+        const auto values = [&field](const MatrixXd& Vk, const MatrixXi& Ck) {
+          return field(Vk, Ck).cast<Eigen::VectorXd>();
+        };
+        const std::vector<RefinementReport> reports =
+            adapt_tetrahedra(V, C, b, values, delta, iterations, f ? *f : ImplicitFunction{});
+        py::list passes;
+        for (const RefinementReport& r : reports)
+          passes.append(refinement_dict(r));
+        return refined_mesh(std::move(V), std::move(C), b, passes);
+      },
+      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("field"), py::arg("delta"),
+      py::arg("iterations"), py::arg("f") = py::none(),
+      R"(Seed 003's adaptive loop: `iterations` times field(V, C) -> (N,) nodal values (an FE
+solution in the seed; any Python function of the current mesh), then refine_tetrahedra with
+delta; stops when nothing is flagged -> (V, C, boundary, [report dict per pass]).)");
+}
+
 void bind_volume_meshes(py::module_& m) {
   m.def(
       "mesh_volume",
@@ -120,6 +195,7 @@ outside_10_170 (elements with a dihedral angle outside [10, 170] degrees).)");
 
 void bind_meshing(py::module_& m) {
   bind_volume_meshes(m);
+  bind_refinement(m);
   m.def(
       "mesh_implicit",
       [](const ImplicitFunction& f, int resolution, double cell, const std::optional<MatrixXd>& box,
