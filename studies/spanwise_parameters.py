@@ -91,9 +91,13 @@ def write_default_section(r, cases, variants, name, results, chosen):
     r.text("""## The default: span and span degree chosen by leave-one-out
 
 `interlin.loft(sections)` and `interlin loft` default to `span="auto"`, `span_degree="auto"`
-(`--span auto --span-degree auto`): every candidate model is lofted with each interior section
-withheld in turn and the lowest leave-one-out score wins. On these blades (their stations are
-parallel planes) the candidates were, in order of preference: %s.""" % "; ".join(
+(`--span auto --span-degree auto`): the candidates are the span parameters station (when the
+sections' stations are detected: parallel planes or coaxial surfaces of revolution), chord length
+and uniform, each with span degree min(K - 1, 9), 5 and 3 (those below K, without repeats);
+every candidate is lofted with each interior section withheld in turn and the lowest
+leave-one-out score wins (ties go to the earlier candidate). Centripetal spacing is not a
+candidate. On these blades (their stations are parallel planes) the candidates were, in order
+of preference: %s.""" % "; ".join(
         "K = %d: %s" % (K, ", ".join(next(c[2] for (_, _, k), c in zip(cases, chosen) if k == K)))
         for K in sorted({k for _, _, k in cases})))
     auto = variants.index(("auto", "auto"))
@@ -166,7 +170,8 @@ the loft of the K stations (%d x 3 x 152 points per blade).""" % (max(counts) - 
     r.text("## Max error per blade and parameterisation")
     r.table("summary", ["law", "spacing", "parameterisation"] + ["K = %d" % K for K in counts]
             + ["fitted order"], summary, digits=3)
-    r.table("wins", ["parameterisation", "blades where it is best (max error)"],
+    r.table("wins", ["parameterisation",
+                     "blades where it is best (max error; a tie counts for the upper row)"],
             [[n, wins[n]] for n in name])
     study.progress("wrote " + r.write())
 
