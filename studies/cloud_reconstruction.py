@@ -12,8 +12,12 @@ surface (the Stanford bunny) are scored by the hold-out distance of withheld poi
 Issue 11's targets, checked per cloud: Chamfer <= 0.5 x the better Poisson's, at no more than its
 time.
 
+Each cloud's bench output is kept in OUT_DIR/raw/CLOUD.txt (first line: the bench arguments);
+--resume reuses those of an interrupted run made with the same arguments, so that the full run
+(hours on a shared 2-core machine) can be done in parts.
+
 Usage: python3 studies/cloud_reconstruction.py [OUT_DIR] [--quick] [-q] [--threads T]
-                                                [--bench build/bench/bench_clouds]
+                                                [--bench build/bench/bench_clouds] [--resume]
        mpirun -n 2 python3 studies/cloud_reconstruction.py OUT_DIR --threads 1
 """
 import math
@@ -23,7 +27,7 @@ import sys
 
 import numpy as np
 
-from study import ROOT, Study, arguments, plt
+from study import ROOT, Study, _atomic, arguments, plt
 
 CLOUDS = ["blade", "blade-noisy", "blade-hole", "slices", "slices-noisy", "radial", "impeller",
           "uav", "car", "valve", "naca0011_plate", "valve-noisy", "bunny"]
@@ -68,12 +72,22 @@ def parse(stdout):
     return name, description, rows, notes
 
 
-def run_cloud(bench, key, settings, threads):
-    cmd = [bench, "--cases", key, "--points", str(settings["points"]), "--resolution",
-           str(settings["resolution"]), "--depths", settings["depths"], "--threads", str(threads)]
-    r = subprocess.run(cmd, capture_output=True, text=True)
+def run_cloud(bench, key, settings, threads, raw_dir, resume):
+    """bench_clouds on one cloud -> parse(); its output is saved in raw_dir/KEY.txt after the
+    arguments line, and with `resume` a saved output with the same arguments is reused."""
+    args = ["--cases", key, "--points", str(settings["points"]), "--resolution",
+            str(settings["resolution"]), "--depths", settings["depths"], "--threads", str(threads)]
+    raw = os.path.join(raw_dir, key + ".txt")
+    if resume and os.path.exists(raw):
+        with open(raw) as f:
+            saved_args, _, stdout = f.read().partition("\n")
+        if saved_args == " ".join(args):
+            return parse(stdout)
+    r = subprocess.run([bench] + args, capture_output=True, text=True)
     if r.returncode != 0:
-        raise RuntimeError("%s failed (%d): %s" % (" ".join(cmd), r.returncode, r.stderr))
+        raise RuntimeError("%s failed (%d): %s" % (" ".join([bench] + args), r.returncode,
+                                                   r.stderr))
+    _atomic(raw, lambda f: f.write(" ".join(args) + "\n" + r.stdout))
     return parse(r.stdout)
 
 
@@ -88,7 +102,9 @@ def main():
         p.add_argument("--threads", type=int, default=0,
                        help="threads per method (0: cores / ranks)"),
         p.add_argument("--bench", default=os.environ.get("INTERLIN_BENCH_CLOUDS", default_bench),
-                       help="the bench_clouds binary (default %(default)s)")))
+                       help="the bench_clouds binary (default %(default)s)"),
+        p.add_argument("--resume", action="store_true",
+                       help="reuse the clouds in OUT_DIR/raw run with the same arguments")))
     if not os.access(args.bench, os.X_OK):
         sys.exit("cloud_reconstruction: %s: not found; build it (README command 2 builds bench/ "
                  "when PCL's surface module, Open3D and CGAL are installed)" % args.bench)
@@ -96,8 +112,10 @@ def main():
                   args)
     settings = QUICK if args.quick else FULL
     threads = args.threads or max(1, (os.cpu_count() or 1) // study.size)
-    results = study.map(lambda key: run_cloud(args.bench, key, settings, threads),
-                        settings["clouds"], "cloud")
+    raw_dir = os.path.join(args.out, "raw")
+    os.makedirs(raw_dir, exist_ok=True)
+    results = study.map(lambda key: run_cloud(args.bench, key, settings, threads, raw_dir,
+                                              args.resume), settings["clouds"], "cloud")
     if not study.writer:
         return
     write_report(study.report, settings, threads, results)
