@@ -172,27 +172,36 @@ PythonOperator<Op, D> fit_python(const PythonOperator<Op, D>& O, const py::objec
   return out;
 }
 
-// Chords of a boundary computed once per line (Theorem 4 asks for the same lines many times;
-// an implicit boundary given in Python costs hundreds of calls per line).
-PlaneBoundary cached(PlaneBoundary b) {
+// chords(args...) computed once per distinct key_of(args...) (thread-safe): Theorems 4 and 5
+// ask for the same lines many times, and an implicit boundary given in Python costs hundreds of
+// calls per line.
+template <int N, class Chords, class KeyOf>
+auto memoized(Chords chords, KeyOf key_of) {
   struct Cache {
     std::mutex m;
-    std::unordered_map<Key<2>, std::vector<double>, KeyHash<2>> lines;
+    std::unordered_map<Key<N>, std::vector<double>, KeyHash<N>> lines;
   };
   auto cache = std::make_shared<Cache>();
-  b.chords = [chords = std::move(b.chords), cache](int axis, double c) {
-    const Key<2> k{static_cast<std::uint64_t>(axis), std::bit_cast<std::uint64_t>(c)};
+  return [chords = std::move(chords), key_of, cache](const auto&... args) {
+    const Key<N> k = key_of(args...);
     {
       std::lock_guard<std::mutex> lock(cache->m);
       const auto it = cache->lines.find(k);
       if (it != cache->lines.end())
         return it->second;
     }
-    std::vector<double> r = chords(axis, c);
+    std::vector<double> r = chords(args...);
     std::lock_guard<std::mutex> lock(cache->m);
     cache->lines.emplace(k, r);
     return r;
   };
+}
+
+// The chords of the line {p[axis] = c}, once per line.
+PlaneBoundary cached(PlaneBoundary b) {
+  b.chords = memoized<2>(std::move(b.chords), [](int axis, double c) {
+    return Key<2>{static_cast<std::uint64_t>(axis), std::bit_cast<std::uint64_t>(c)};
+  });
   return b;
 }
 
@@ -401,31 +410,15 @@ samples   probes per cell for changes of the chord structure
 ValueError for fewer than 2 lines, non-increasing lines or lines that do not cover the box.)");
 }
 
-// A body's chords computed once per line and interval (Theorem 5 asks for the same lines many
-// times; an implicit body given in Python costs hundreds of calls per line).
+// The chords of a line along `axis` clipped to [lo, hi], once per line and interval.
 SolidBoundary cached(SolidBoundary b) {
-  struct Cache {
-    std::mutex m;
-    std::unordered_map<Key<5>, std::vector<double>, KeyHash<5>> lines;
-  };
-  auto cache = std::make_shared<Cache>();
-  b.chords = [chords = std::move(b.chords), cache](int axis, const Vector3d& p, double lo,
-                                                   double hi) {
-    const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
-    const Key<5> k{static_cast<std::uint64_t>(axis), std::bit_cast<std::uint64_t>(p(a1)),
-                   std::bit_cast<std::uint64_t>(p(a2)), std::bit_cast<std::uint64_t>(lo),
-                   std::bit_cast<std::uint64_t>(hi)};
-    {
-      std::lock_guard<std::mutex> lock(cache->m);
-      const auto it = cache->lines.find(k);
-      if (it != cache->lines.end())
-        return it->second;
-    }
-    std::vector<double> r = chords(axis, p, lo, hi);
-    std::lock_guard<std::mutex> lock(cache->m);
-    cache->lines.emplace(k, r);
-    return r;
-  };
+  b.chords =
+      memoized<5>(std::move(b.chords), [](int axis, const Vector3d& p, double lo, double hi) {
+        const int a1 = axis == 0 ? 1 : 0, a2 = axis == 2 ? 1 : 2;
+        return Key<5>{static_cast<std::uint64_t>(axis), std::bit_cast<std::uint64_t>(p(a1)),
+                      std::bit_cast<std::uint64_t>(p(a2)), std::bit_cast<std::uint64_t>(lo),
+                      std::bit_cast<std::uint64_t>(hi)};
+      });
   return b;
 }
 

@@ -85,6 +85,8 @@ def test_implicit_of_a_point_cloud_object():
         interlin.implicit(interlin.PointCloud(P, N), slices="planar")
     with pytest.raises(ValueError, match="slices"):
         interlin.implicit(interlin.PointCloud(P, N), slices="diagonal")
+    with pytest.raises(ValueError, match="input 'scan.foo': unknown kind"):
+        interlin.implicit("scan.foo")
 
 
 def test_sectioned_scan_becomes_the_clis_section_body(tmp_path):
