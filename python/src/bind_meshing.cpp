@@ -64,6 +64,14 @@ py::dict quality_dict(const VolumeQuality& q) {
                      field("outside_10_170", &VolumeQuality::outside_10_170));
 }
 
+// The library's per-node flags (char) as a NumPy bool array (N,).
+Eigen::Matrix<bool, Eigen::Dynamic, 1> boundary_flags(const std::vector<char>& b) {
+  Eigen::Matrix<bool, Eigen::Dynamic, 1> on(static_cast<Eigen::Index>(b.size()));
+  for (size_t i = 0; i < b.size(); ++i)
+    on(static_cast<Eigen::Index>(i)) = b[i] != 0;
+  return on;
+}
+
 py::dict refinement_dict(const RefinementReport& r) {
   return fields_dict(r, field("flagged", &RefinementReport::flagged),
                      field("refined_nodes", &RefinementReport::refined_nodes),
@@ -84,10 +92,7 @@ std::vector<char> refinement_input(const MatrixXd& V, const MatrixXi& C,
 }
 
 py::tuple refined_mesh(MatrixXd V, MatrixXi C, const std::vector<char>& b, py::object extra) {
-  Eigen::Matrix<bool, Eigen::Dynamic, 1> on_boundary(static_cast<Eigen::Index>(b.size()));
-  for (size_t i = 0; i < b.size(); ++i)
-    on_boundary(static_cast<Eigen::Index>(i)) = b[i] != 0;
-  return py::make_tuple(std::move(V), std::move(C), std::move(on_boundary), std::move(extra));
+  return py::make_tuple(std::move(V), std::move(C), boundary_flags(b), std::move(extra));
 }
 
 void bind_refinement(py::module_& m) {
@@ -100,8 +105,11 @@ range of the nodal quantity values (N,) -> (E,) in [0, 1]. C (E, k) elements of 
       [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
          Eigen::VectorXd values, double delta, const std::optional<ImplicitFunction>& f) {
         std::vector<char> b = refinement_input(V, C, boundary);
-        const RefinementReport r =
-            refine_tetrahedra(V, C, b, values, delta, f ? *f : ImplicitFunction{});
+        RefinementReport r;
+        {
+          py::gil_scoped_release release;
+          r = refine_tetrahedra(V, C, b, values, delta, f ? *f : ImplicitFunction{});
+        }
         return refined_mesh(std::move(V), std::move(C), b,
                             py::make_tuple(std::move(values), refinement_dict(r)));
       },
@@ -121,10 +129,15 @@ ends, report dict: flagged, refined_nodes, split, new_nodes, projected)).)");
          const std::optional<ImplicitFunction>& f) {
         std::vector<char> b = refinement_input(V, C, boundary);
         const auto values = [&field](const MatrixXd& Vk, const MatrixXi& Ck) {
+          py::gil_scoped_acquire gil;
           return field(Vk, Ck).cast<Eigen::VectorXd>();
         };
-        const std::vector<RefinementReport> reports =
-            adapt_tetrahedra(V, C, b, values, delta, iterations, f ? *f : ImplicitFunction{});
+        std::vector<RefinementReport> reports;
+        {
+          py::gil_scoped_release release;
+          reports =
+              adapt_tetrahedra(V, C, b, values, delta, iterations, f ? *f : ImplicitFunction{});
+        }
         py::list passes;
         for (const RefinementReport& r : reports)
           passes.append(refinement_dict(r));
@@ -159,11 +172,8 @@ void bind_volume_meshes(py::module_& m) {
           py::gil_scoped_release release;
           v = volume_mesh(f, o, &info);
         }
-        Eigen::Matrix<bool, Eigen::Dynamic, 1> on_boundary(v.boundary.size());
-        for (size_t i = 0; i < v.boundary.size(); ++i)
-          on_boundary(static_cast<Eigen::Index>(i)) = v.boundary[i] != 0;
         return py::make_tuple(std::move(v.V), std::move(v.C), std::move(v.B),
-                              std::move(on_boundary), volume_info_dict(info));
+                              boundary_flags(v.boundary), volume_info_dict(info));
       },
       py::arg("f"), py::arg("elements") = "tet", py::arg("resolution") = 64, py::arg("cell") = 0.0,
       py::arg("box") = py::none(), py::arg("rule") = "strict", py::arg("margin") = 0.35,

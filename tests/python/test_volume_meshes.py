@@ -90,3 +90,10 @@ def test_adaptive_refinement_is_conforming_and_follows_the_field():
     assert np.median(size(V2, C2)[far(V2, C2)]) == np.median(size(V, C)[far(V, C)])
     with pytest.raises(ValueError, match="boundary"):
         interlin.refine_tetrahedra(V, C, boundary[:-1], front(V, C), 0.3)
+    with pytest.raises(ValueError, match="values must be #V finite numbers"):
+        interlin.adapt_tetrahedra(V, C, boundary, lambda V, C: np.zeros(3), 0.3, 1)
+
+    def failing(V, C):
+        raise KeyError("from the field")
+    with pytest.raises(KeyError, match="from the field"):  # the field's own error, unchanged
+        interlin.adapt_tetrahedra(V, C, boundary, failing, 0.3, 1)
