@@ -292,17 +292,16 @@ square: traces of the R-function omega, max error on a 201 x 201 sample.""")
     r.text("""What the numbers show (measured in the run of docs/studies; see also
 docs/benchmarks.md):
 
-- T14 (box interflatation), T15 (Example 3's R-function) and T16 (Theorem 4 on the square, both
-  targets, with the location of the largest error) are reproduced to every digit the digest
-  prints.
-- Not reproduced: (a) T14's face bound 4.4e-16 - the largest error on 600 random face points
+- T14 (box interflatation), T15 (Example 3's R-function), T16 (Theorem 4 on the square, both
+  targets, with the location of the largest error) and T17 (Theorem 4 on the disc: each
+  quadrant one curved triangle) are reproduced to every digit the digest prints. T17 needs the
+  triangle to start on the grid line x = 0: where the circle touches y = 1, chord ends within
+  the chord tolerance (1e-12 of a cell) of the line make a sliver 1.4e-6 wide, which the library
+  merges into the triangle (before, it was a rectangle of its own and moved every value of the
+  quadrant by ~1e-6: 0.2113252 and 0.5532409).
+- Not reproduced: T14's face bound 4.4e-16 - the largest error on 600 random face points
   is 1.3e-15, 3 ulp of the values (up to e x 1 = 2.7): round-off of the seven-term Boolean
-  sum, the digest's bound holds for its own sample points only; (b) T17's 7th digit -
-  interlin gives 0.2113252 and 0.5532409 for the digest's 0.2113249 and 0.5532401 (2.6e-7,
-  8.1e-7). The closed form (1 - x)(1 - y / sqrt(1 - x^2)) of the digest takes each quadrant as
-  one curved triangle; the library splits off a rectangle 1.4e-6 wide at x = 0, where the
-  circle stays within its chord tolerance (1e-12 of a cell) of the grid line y = 1, so the
-  triangle starts at x = 1.4e-6 and every value of the quadrant moves by ~1e-6 relative.
+  sum, the digest's bound holds for its own sample points only.
 - Grid interflatation: f - Of = (I - P1)(I - P2)(I - P3) f, the product of three 1-D
   interpolation errors: linear blending converges as h^6 (fitted 6.00 and 6.04), cubic
   blending as h^12 (the oscillating f: 13.9 over its last three grids, local slopes 12.3, 11.7,

@@ -186,26 +186,25 @@ TEST_CASE("T17: curved triangles of the unit disc, digest values", "[operators][
   // The disc as an implicit curve and as a closed B-spline curve must give the same operator
   // where the curve is the circle (to the curve's accuracy).
   const RegionInterlineation O = region_interlineation(implicit_boundary(disc, box), g, g, w);
-  // Each quadrant is a curved triangle (besides a sliver of width ~1e-6 at the axis where the
-  // circle is within the 1e-12 tolerance of the grid line y = +-1: a rectangle there).
+  // Each quadrant is one curved triangle: the circle touches the grid lines x, y = +-1, and the
+  // sliver that the chord-end tolerance makes at the touch is no piece of its own.
   for (const auto& pieces : O.pieces) {
-    const auto widest =
-        std::max_element(pieces.begin(), pieces.end(),
-                         [](const auto& a, const auto& b) { return a.b - a.a < b.b - b.a; });
-    REQUIRE(widest != pieces.end());
-    CHECK(widest->kind == CellKind::triangle);
-    CHECK(widest->b - widest->a > 1 - 1e-5);
+    REQUIRE(pieces.size() == 1);
+    CHECK(pieces[0].kind == CellKind::triangle);
   }
-  // First quadrant: Ou = (1-x)(1 - y / sqrt(1-x^2)).
-  CHECK(evaluate(O, Vector2d(0.5, 0.5)) == Approx(0.2113249).margin(5e-8));
-  CHECK(evaluate(O, Vector2d(0.3, 0.2)) == Approx(0.5532401).margin(5e-8));
+  // First quadrant: Ou = (1-x)(1 - y / sqrt(1-x^2)); the digest's values to its 7 digits.
+  CHECK(std::abs(evaluate(O, Vector2d(0.5, 0.5)) - 0.2113249) <= 5e-8);
+  CHECK(std::abs(evaluate(O, Vector2d(0.3, 0.2)) - 0.5532401) <= 5e-8);
+  // The closed form to round-off (1e-12: the chords of the implicit circle are roots to ~1e-15).
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> U(0, 1);
+  double worst = 0;
   for (int k = 0; k < 100; ++k) {
     const double x = U(rng), y = U(rng) * std::sqrt(1 - x * x);
-    CHECK(evaluate(O, Vector2d(x, y)) ==
-          Approx((1 - x) * (1 - y / std::sqrt(1 - x * x))).margin(1e-12));
+    worst = std::max(
+        worst, std::abs(evaluate(O, Vector2d(x, y)) - (1 - x) * (1 - y / std::sqrt(1 - x * x))));
   }
+  CHECK(worst <= 1e-12);
   // Zero on the circle, 1 - |x| and 1 - |y| on the axes.
   for (int k = 0; k < 64; ++k) {
     const double a = 2 * M_PI * (k + 0.37) / 64;

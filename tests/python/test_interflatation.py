@@ -107,15 +107,13 @@ def test_t17_curved_triangles_of_the_unit_disc():
     g = np.array([-1.0, 0.0, 1.0])
     O = interlin.region_interlineation(disc, g, g, lambda x, y: 1 - np.hypot(x, y))
     assert O.cell_kinds()["triangle"] == 4
-    # First quadrant: Ou = (1 - x)(1 - y / sqrt(1 - x^2)) (closed form of the mapped cell). The
-    # library splits off a rectangle 1.4e-6 wide where the circle is within its 1e-12 tolerance
-    # of the line y = 1 (x < sqrt(2e-12)), so the triangles start there: the values differ from
-    # the closed form by up to ~1e-6 (digest T17's 7th digit; docs/studies).
-    assert O([[0.5, 0.5], [0.3, 0.2]]) == pytest.approx([0.2113249, 0.5532401], abs=1e-6)
+    # First quadrant: Ou = (1 - x)(1 - y / sqrt(1 - x^2)) (closed form of the mapped cell), the
+    # digest's values to its 7 digits, the closed form to round-off (chords are roots to ~1e-15).
+    assert O([[0.5, 0.5], [0.3, 0.2]]) == pytest.approx([0.2113249, 0.5532401], abs=5e-8)
     x = RNG.uniform(0, 1, 200)
     y = RNG.uniform(0, 1, 200) * np.sqrt(1 - x * x)
     exact = (1 - x) * (1 - y / np.sqrt(1 - x * x))
-    assert np.max(np.abs(O(np.column_stack([x, y])) - exact)) < 2e-6
+    assert np.max(np.abs(O(np.column_stack([x, y])) - exact)) < 1e-12
     a = 2 * np.pi * (np.arange(64) + 0.37) / 64
     assert np.max(np.abs(O(np.column_stack([np.cos(a), np.sin(a)])))) < 1e-12
     assert O.trace(0, 0.0, np.array([0.5]))[0] == pytest.approx(0.5, abs=1e-15)

@@ -15,6 +15,10 @@ namespace {
 // Chord ends closer than this (relative to the cell) to a grid line are on the grid line; chords
 // shorter are points (a triangle's apex).
 constexpr double kRelativeTolerance = 1e-12;
+// Where dG touches a grid line (a tangency), chord ends within the tolerance of the line make a
+// sliver piece of width sqrt(2 tol R); pieces narrower than this (relative to the cell) are
+// merged away, which covers radii of curvature R up to (1e-4)^2 / (2 1e-12) = 5000 cells.
+constexpr double kSliverWidth = 1e-4;
 // Bisection steps that locate a change of the chord structure inside a cell (2^-50 of a cell).
 constexpr int kChangeBisections = 50;
 // Changes of the chord structure located between two probes at most (a smooth boundary makes
@@ -81,6 +85,35 @@ CellKind kind_of(int mapping, const Clipped& c, bool degenerate_side) {
   return c.hi_grid ? CellKind::curved_left : CellKind::curved_right;
 }
 
+// The cuts x0 < c_1 < ... < x1 of a cell without the pieces narrower than kSliverWidth: a sliver
+// at a side of the cell joins its neighbouring piece; inside the cell both of its cuts go when the
+// chord structure is the same on either side (dG touches a grid line there), else one cut at its
+// middle stays. Otherwise a piece's side would be a line near, not on, the grid line, and the
+// operator off by the sliver's width.
+template <class Structure>
+std::vector<double> without_slivers(const std::vector<double>& cuts, const Structure& structure) {
+  const double x0 = cuts.front(), x1 = cuts.back();
+  const double width = kSliverWidth * (x1 - x0);
+  std::vector<double> kept{x0};
+  for (size_t i = 1; i < cuts.size(); ++i) {
+    if (cuts[i] - kept.back() >= width) {
+      kept.push_back(cuts[i]);
+    } else if (i + 1 == cuts.size()) { // at x1: the previous piece reaches x1
+      if (kept.size() > 1)
+        kept.pop_back();
+      kept.push_back(x1);
+    } else if (kept.size() > 1) { // inside: a touch, or a change located in the middle
+      const double left = 0.5 * (kept[kept.size() - 2] + kept.back());
+      const double right = 0.5 * (cuts[i] + cuts[i + 1]);
+      if (same_structure(structure(left), structure(right)))
+        kept.pop_back();
+      else
+        kept.back() = 0.5 * (kept.back() + cuts[i]);
+    } // at x0: the next piece starts at x0
+  }
+  return kept;
+}
+
 // The pieces of a cell [x0, x1] (piece axis) x [y0, y1] (mapping axis) for one mapping axis.
 // The chord structure is probed at `samples` + 1 equally spaced positions, the cell's sides and
 // where dG crosses the cell's other two sides (so that slivers at a side are not missed); each
@@ -115,15 +148,8 @@ std::vector<CellPiece> cell_pieces(const PlaneBoundary& b, int mapping, double x
         break;
     }
   }
-  // Changes closer than the tolerance to the previous one or to x1 (round-off slivers at the
-  // cell's sides) merge into the neighbouring piece.
-  const double min_width = kRelativeTolerance * (x1 - x0);
-  std::vector<double> kept{x0};
-  for (const double c : cuts)
-    if (c - kept.back() > min_width && x1 - c > min_width)
-      kept.push_back(c);
-  kept.push_back(x1);
-  cuts = std::move(kept);
+  cuts.push_back(x1);
+  cuts = without_slivers(cuts, structure);
   std::vector<CellPiece> pieces;
   const double tol = kRelativeTolerance * (y1 - y0);
   std::vector<std::vector<Clipped>> mids;
