@@ -47,15 +47,15 @@ std::optional<Eigen::Vector3d> boundary_point(const ImplicitFunction& f,
 
 TEST_CASE("Rectangle (2.21) with a = 2, b = 1: digest 000 T9", "[rf][primitives]") {
   const Expr w = and0(4 - X * X, 1 - Y * Y); // the un-normalised form of the worked example
-  CHECK(value_at(w, 0, 0) == Approx(5 - std::sqrt(17.0)).margin(1e-15));
-  CHECK(value_at(w, 0, 0) == Approx(0.8768944).margin(kPrinted));
-  CHECK(value_at(w, 2, 0) == Approx(0).margin(1e-15));
-  CHECK(value_at(w, 0, 1) == Approx(0).margin(1e-15));
+  CHECK(value_at(w, 0, 0) == Approx(5 - std::sqrt(17.0)).epsilon(0).margin(1e-15));
+  CHECK(value_at(w, 0, 0) == Approx(0.8768944).epsilon(0).margin(kPrinted));
+  CHECK(value_at(w, 2, 0) == Approx(0).epsilon(0).margin(1e-15));
+  CHECK(value_at(w, 0, 1) == Approx(0).epsilon(0).margin(1e-15));
   CHECK(value_at(w, 2.5, 0) < 0);
   // the normalised rectangle has the same zero set
   const ImplicitFunction r = test::compiled(rectangle(X, Y, 2.0, 1.0));
-  CHECK(value_at(r, 2, 0) == Approx(0).margin(1e-15));
-  CHECK(value_at(r, 0, 1) == Approx(0).margin(1e-15));
+  CHECK(value_at(r, 2, 0) == Approx(0).epsilon(0).margin(1e-15));
+  CHECK(value_at(r, 0, 1) == Approx(0).epsilon(0).margin(1e-15));
   CHECK(value_at(r, 1, 0.5) > 0);
   CHECK(value_at(r, 2.5, 0) < 0);
 }
@@ -65,20 +65,20 @@ TEST_CASE("Normalised circle and strip, both forms: digest 000 T10, T11", "[rf][
   const double c1[] = {1, 0.75, 0, -1.25};
   const double c2[] = {1.1547005, 0.8320503, 0, -1.0910895};
   for (int i = 0; i < 4; ++i) {
-    CHECK(value_at(circle(X, Y, 2.0), r[i], 0) == Approx(c1[i]).margin(1e-15));
-    CHECK(value_at(circle_smooth(X, Y, 2.0), 0, r[i]) == Approx(c2[i]).margin(kPrinted));
+    CHECK(value_at(circle(X, Y, 2.0), r[i], 0) == Approx(c1[i]).epsilon(0).margin(1e-15));
+    CHECK(value_at(circle_smooth(X, Y, 2.0), 0, r[i]) == Approx(c2[i]).epsilon(0).margin(kPrinted));
   }
   for (const Expr& c : {circle(X, Y, 2.0), circle_smooth(X, Y, 2.0)}) // T10: |grad| = 1 at r = R
-    CHECK(gradient_at(c, 2 * std::cos(0.7), 2 * std::sin(0.7)).norm() == Approx(1).margin(1e-15));
+    CHECK(gradient_at(c, 2 * std::cos(0.7), 2 * std::sin(0.7)).norm() == Approx(1).epsilon(0).margin(1e-15));
   const double yv[] = {0, 0.5, 1, 2};
   const double s1[] = {0.5, 0.375, 0, -1.5};
   const double s2[] = {0.5773503, 0.4160251, 0, -1.1338934};
   for (int i = 0; i < 4; ++i) {
-    CHECK(value_at(strip(Y, 1.0), 0, yv[i]) == Approx(s1[i]).margin(1e-15));
-    CHECK(value_at(strip_smooth(Y, 1.0), 0, yv[i]) == Approx(s2[i]).margin(kPrinted));
+    CHECK(value_at(strip(Y, 1.0), 0, yv[i]) == Approx(s1[i]).epsilon(0).margin(1e-15));
+    CHECK(value_at(strip_smooth(Y, 1.0), 0, yv[i]) == Approx(s2[i]).epsilon(0).margin(kPrinted));
   }
   // strip_smooth tends to -|u| as b -> 0 (seed 000 (2.31))
-  CHECK(value_at(strip_smooth(Y, 1e-8), 0, 0.3) == Approx(-0.3).margin(1e-8));
+  CHECK(value_at(strip_smooth(Y, 1e-8), 0, 0.3) == Approx(-0.3).epsilon(0).margin(1e-8));
 }
 
 TEST_CASE("Gradients of primitives equal their closed forms", "[rf][primitives][gradient]") {
@@ -146,7 +146,7 @@ TEST_CASE("|grad| = 1 on the boundary of every normalised primitive",
       if (!p)
         continue;
       ++found;
-      CHECK(gradient_at(f, p->x(), p->y(), p->z()).norm() == Approx(1).margin(1e-9));
+      CHECK(gradient_at(f, p->x(), p->y(), p->z()).norm() == Approx(1).epsilon(0).margin(1e-9));
     }
     CHECK(found >= 15); // every primitive met on enough rays
   }
@@ -160,7 +160,7 @@ TEST_CASE("Normal function of a segment is the distance to it", "[rf][primitives
   for (int i = 0; i < 200; ++i) {
     const Eigen::Vector2d p(u(rng), u(rng));
     const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    CHECK(value_at(s, p.x(), p.y()) == Approx((p - a - t * (b - a)).norm()).margin(1e-13));
+    CHECK(value_at(s, p.x(), p.y()) == Approx((p - a - t * (b - a)).norm()).epsilon(0).margin(1e-13));
   }
 }
 
@@ -171,15 +171,15 @@ TEST_CASE("Normalisation (2.26) of R^2 - x^2 - y^2: digest 000 T14", "[rf][norma
   std::uniform_real_distribution<double> u(-3, 3), ang(0, 2 * M_PI);
   for (int i = 0; i < 100; ++i) {
     const double t = ang(rng);
-    CHECK(gradient_at(f, 2 * std::cos(t), 2 * std::sin(t)).norm() == Approx(1).margin(1e-14));
+    CHECK(gradient_at(f, 2 * std::cos(t), 2 * std::sin(t)).norm() == Approx(1).epsilon(0).margin(1e-14));
     const double x = u(rng), y = u(rng);
     CHECK((value_at(f, x, y) > 0) == (value_at(f1, x, y) > 0)); // sign unchanged
     // closed form: w1 / sqrt(w1^2 + 4 r^2)
     const double v1 = 4 - x * x - y * y;
-    CHECK(value_at(f, x, y) == Approx(v1 / std::sqrt(v1 * v1 + 4 * (x * x + y * y))).margin(1e-15));
+    CHECK(value_at(f, x, y) == Approx(v1 / std::sqrt(v1 * v1 + 4 * (x * x + y * y))).epsilon(0).margin(1e-15));
   }
   // (2.27): w1 / |grad w1| = (4 - r^2) / (2r)
-  CHECK(value_at(normalize_by_gradient(w1), 1, 0) == Approx(1.5).margin(1e-15));
+  CHECK(value_at(normalize_by_gradient(w1), 1, 0) == Approx(1.5).epsilon(0).margin(1e-15));
 }
 
 TEST_CASE("Piece of a curve (2.34): digest 000 T13", "[rf][piece]") {
@@ -188,7 +188,7 @@ TEST_CASE("Piece of a curve (2.34): digest 000 T13", "[rf][piece]") {
   const double pts[][3] = {{0, 0.1, 0.1000000}, {0, 1, 1.0046253}, {0, 3, 4.5496194},    {5, 0, 0},
                            {6, 0, 1.1},         {7, 0, 2.4},       {5.5, 0.5, 0.7457059}};
   for (const auto& p : pts)
-    CHECK(value_at(w, p[0], p[1]) == Approx(p[2]).margin(kPrinted));
+    CHECK(value_at(w, p[0], p[1]) == Approx(p[2]).epsilon(0).margin(kPrinted));
   CHECK(value_at(w, 2, 0) == 0.0); // zero on the piece
 }
 
@@ -197,14 +197,14 @@ TEST_CASE("Walls of a given thickness", "[rf][wall]") {
   const ImplicitFunction w = test::compiled(wall(s, 0.1)), iw = test::compiled(inner_wall(s, 0.1));
   // sphere (1 - r^2)/2 is 0.1 at r = sqrt(0.8); the wall |s| <= 0.1 spans r in [sqrt(0.8),
   // sqrt(1.2)]
-  CHECK(value_at(w, std::sqrt(0.8), 0, 0) == Approx(0).margin(1e-15));
-  CHECK(value_at(w, std::sqrt(1.2), 0, 0) == Approx(0).margin(1e-15));
-  CHECK(value_at(w, 1, 0, 0) == Approx(0.1).margin(1e-15));
+  CHECK(value_at(w, std::sqrt(0.8), 0, 0) == Approx(0).epsilon(0).margin(1e-15));
+  CHECK(value_at(w, std::sqrt(1.2), 0, 0) == Approx(0).epsilon(0).margin(1e-15));
+  CHECK(value_at(w, 1, 0, 0) == Approx(0.1).epsilon(0).margin(1e-15));
   CHECK(value_at(w, 0.5, 0, 0) < 0);
   // inner wall: 0 <= s <= 0.1, normalised on both faces
   CHECK(value_at(iw, 0.95, 0, 0) > 0);
   CHECK(value_at(iw, 0.5, 0, 0) < 0);
   CHECK(value_at(iw, 1.05, 0, 0) < 0);
-  CHECK(gradient_at(iw, 1, 0, 0).norm() == Approx(1).margin(1e-15));
-  CHECK(gradient_at(iw, std::sqrt(0.8), 0, 0).norm() == Approx(std::sqrt(0.8)).margin(1e-15));
+  CHECK(gradient_at(iw, 1, 0, 0).norm() == Approx(1).epsilon(0).margin(1e-15));
+  CHECK(gradient_at(iw, std::sqrt(0.8), 0, 0).norm() == Approx(std::sqrt(0.8)).epsilon(0).margin(1e-15));
 }

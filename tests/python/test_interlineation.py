@@ -75,7 +75,8 @@ def test_scalar_and_array_evaluation_agree():
     single = [O(x, y) for x, y in pts]
     # (NumPy may take vector or scalar paths for different lengths: round-off only)
     assert np.max(np.abs(batch - np.array(single).ravel())) < 1e-14
-    assert O(0.3, 0.4, dx=1, dy=1) == pytest.approx(O(0.3, np.array([0.4]), dx=1, dy=1)[0])
+    assert O(0.3, 0.4, dx=1, dy=1) == pytest.approx(O(0.3, np.array([0.4]), dx=1, dy=1)[0],
+                                                     rel=1e-14)
 
 
 def test_vector_valued_and_spline_traces():

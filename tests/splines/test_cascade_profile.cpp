@@ -29,9 +29,9 @@ double coef(const PlanarNaturalCurve& c, Index j) {
 
 void check_point(const CurvePose& p, double x, double y, double deg) {
   // The digest prints 6 decimals.
-  CHECK(p.point.x() == Approx(x).margin(6e-7));
-  CHECK(p.point.y() == Approx(y).margin(6e-7));
-  CHECK(p.angle == Approx(deg * kDeg).margin(1e-14));
+  CHECK(p.point.x() == Approx(x).epsilon(0).margin(6e-7));
+  CHECK(p.point.y() == Approx(y).epsilon(0).margin(6e-7));
+  CHECK(p.angle == Approx(deg * kDeg).epsilon(0).margin(1e-14));
 }
 
 // Do segments p-q and r-s cross?
@@ -46,10 +46,10 @@ bool crosses(const Vector2d& p, const Vector2d& q, const Vector2d& r, const Vect
 
 TEST_CASE("Cascade key points: the book's formulas (digest §6.1 values)", "[splines][cascade]") {
   const CascadeProfile P = cascade_profile(digest_parameters());
-  CHECK(P.O2.x() == Approx(0.01).margin(1e-15));
-  CHECK(P.O2.y() == Approx(0.190811).margin(6e-7));
-  CHECK(P.O1.x() == Approx(0.94).margin(1e-15));
-  CHECK(P.O1.y() == Approx(1.273179).margin(6e-7));
+  CHECK(P.O2.x() == Approx(0.01).epsilon(0).margin(1e-15));
+  CHECK(P.O2.y() == Approx(0.190811).epsilon(0).margin(6e-7));
+  CHECK(P.O1.x() == Approx(0.94).epsilon(0).margin(1e-15));
+  CHECK(P.O1.y() == Approx(1.273179).epsilon(0).margin(6e-7));
   check_point(P.C2, 0.000152, 0.192548, 80);
   check_point(P.C3, 0.175691, 0.870480, 67);
   check_point(P.C1, 0.955529, 1.331135, -15);
@@ -59,12 +59,12 @@ TEST_CASE("Cascade key points: the book's formulas (digest §6.1 values)", "[spl
   // angles are perpendicular to the radii there.
   for (const auto& [q, O, r] : {std::tuple{P.C2, P.O2, 0.01}, std::tuple{P.K2, P.O2, 0.01},
                                 std::tuple{P.C1, P.O1, 0.06}, std::tuple{P.K1, P.O1, 0.06}}) {
-    CHECK((q.point - O).norm() == Approx(r).margin(1e-15));
+    CHECK((q.point - O).norm() == Approx(r).epsilon(0).margin(1e-15));
     CHECK((q.point - O).dot(Vector2d(std::cos(q.angle), std::sin(q.angle))) ==
-          Approx(0).margin(1e-15));
+          Approx(0).epsilon(0).margin(1e-15));
   }
   // C3 lies on the throat circle about the neighbouring blade's trailing-edge centre.
-  CHECK((P.C3.point - (P.O2 + Vector2d(0, 0.75))).norm() == Approx(0.18).margin(1e-15));
+  CHECK((P.C3.point - (P.O2 + Vector2d(0, 0.75))).norm() == Approx(0.18).epsilon(0).margin(1e-15));
 }
 
 TEST_CASE("Cascade suction side: §4.1 (G2) and §4.2 (G3) against the digest's numbers",
@@ -76,51 +76,51 @@ TEST_CASE("Cascade suction side: §4.1 (G2) and §4.2 (G3) against the digest's 
   // Digest §12 [MINE] regression values, 8 digits; our fits converge to 1e-12 miss.
   for (const CascadeProfile* X : {&P, &Q}) {
     const PlanarNaturalCurve& lin = X->suction[0];
-    CHECK(coef(lin, 1) == Approx(-0.84235249).margin(1e-8));
-    CHECK(coef(lin, 0) == Approx(-0.02765107).margin(1e-8));
-    CHECK(lin.length == Approx(0.70187787).margin(1e-8));
-    CHECK(curvature(lin.law, lin.length) == Approx(-0.61887965).margin(1e-8));
+    CHECK(coef(lin, 1) == Approx(-0.84235249).epsilon(0).margin(1e-8));
+    CHECK(coef(lin, 0) == Approx(-0.02765107).epsilon(0).margin(1e-8));
+    CHECK(lin.length == Approx(0.70187787).epsilon(0).margin(1e-8));
+    CHECK(curvature(lin.law, lin.length) == Approx(-0.61887965).epsilon(0).margin(1e-8));
     CHECK(X->miss < 1e-10);
   }
   const PlanarNaturalCurve& q2 = P.suction[1];
-  CHECK(coef(q2, 2) == Approx(2.13018337).margin(1e-8));
-  CHECK(coef(q2, 1) == Approx(-3.05218262).margin(1e-8));
-  CHECK(coef(q2, 0) == Approx(-0.61887965).margin(1e-8));
-  CHECK(q2.length == Approx(0.99757521).margin(1e-8));
+  CHECK(coef(q2, 2) == Approx(2.13018337).epsilon(0).margin(1e-8));
+  CHECK(coef(q2, 1) == Approx(-3.05218262).epsilon(0).margin(1e-8));
+  CHECK(coef(q2, 0) == Approx(-0.61887965).epsilon(0).margin(1e-8));
+  CHECK(q2.length == Approx(0.99757521).epsilon(0).margin(1e-8));
   const PlanarNaturalCurve& c3 = Q.suction[1];
-  CHECK(coef(c3, 3) == Approx(7.00083498).margin(1e-8));
-  CHECK(coef(c3, 2) == Approx(-6.40340869).margin(1e-8));
-  CHECK(coef(c3, 1) == Approx(-0.84235249).margin(1e-8));
-  CHECK(coef(c3, 0) == Approx(-0.61887965).margin(1e-8));
-  CHECK(c3.length == Approx(1.00822490).margin(1e-8));
+  CHECK(coef(c3, 3) == Approx(7.00083498).epsilon(0).margin(1e-8));
+  CHECK(coef(c3, 2) == Approx(-6.40340869).epsilon(0).margin(1e-8));
+  CHECK(coef(c3, 1) == Approx(-0.84235249).epsilon(0).margin(1e-8));
+  CHECK(coef(c3, 0) == Approx(-0.61887965).epsilon(0).margin(1e-8));
+  CHECK(c3.length == Approx(1.00822490).epsilon(0).margin(1e-8));
   // Joints: G2 keeps k and lets k' jump (-0.842 -> -3.052); G3 keeps k and k', both sides.
   for (const auto* side : {&P.suction, &P.pressure}) {
     const PlanarNaturalCurve &a = (*side)[0], &b = (*side)[1];
-    CHECK(curvature(a.law, a.length) == Approx(curvature(b.law, 0)).margin(1e-13));
+    CHECK(curvature(a.law, a.length) == Approx(curvature(b.law, 0)).epsilon(0).margin(1e-13));
     CHECK(std::abs(curvature(a.law, a.length, 1) - curvature(b.law, 0, 1)) > 0.1);
   }
   for (const auto* side : {&Q.suction, &Q.pressure}) {
     const PlanarNaturalCurve &a = (*side)[0], &b = (*side)[1];
-    CHECK(curvature(a.law, a.length) == Approx(curvature(b.law, 0)).margin(1e-13));
-    CHECK(curvature(a.law, a.length, 1) == Approx(curvature(b.law, 0, 1)).margin(1e-13));
+    CHECK(curvature(a.law, a.length) == Approx(curvature(b.law, 0)).epsilon(0).margin(1e-13));
+    CHECK(curvature(a.law, a.length, 1) == Approx(curvature(b.law, 0, 1)).epsilon(0).margin(1e-13));
     // The joint segment starts where the linear one ends, with its tangent.
     CHECK((b.start - natural_point(a, a.length)).norm() < 1e-15);
-    CHECK(b.phi0 == Approx(tangent_angle(a, a.length)).margin(1e-15));
+    CHECK(b.phi0 == Approx(tangent_angle(a, a.length)).epsilon(0).margin(1e-15));
   }
   // Each side ends on its leading-edge point with the book's tangent angle.
   for (const CascadeProfile* X : {&P, &Q}) {
     const PlanarNaturalCurve& s = X->suction[1];
     const PlanarNaturalCurve& p = X->pressure[1];
     CHECK((natural_point(s, s.length) - X->C1.point).norm() < 1e-10);
-    CHECK(tangent_angle(s, s.length) == Approx(X->C1.angle).margin(1e-13));
+    CHECK(tangent_angle(s, s.length) == Approx(X->C1.angle).epsilon(0).margin(1e-13));
     CHECK((natural_point(p, p.length) - X->K1.point).norm() < 1e-10);
-    CHECK(tangent_angle(p, p.length) == Approx(X->K1.angle).margin(1e-13));
+    CHECK(tangent_angle(p, p.length) == Approx(X->K1.angle).epsilon(0).margin(1e-13));
   }
   // Curvature-plot data: relative arc length 0..1, k continuous across the joint.
   const MatrixXd plot = side_curvature_plot(Q.suction, 101);
   CHECK(plot(0, 0) == 0.0);
-  CHECK(plot(100, 0) == Approx(1.0).margin(1e-15));
-  CHECK(plot(0, 5) == Approx(coef(Q.suction[0], 0)).margin(1e-15));
+  CHECK(plot(100, 0) == Approx(1.0).epsilon(0).margin(1e-15));
+  CHECK(plot(0, 5) == Approx(coef(Q.suction[0], 0)).epsilon(0).margin(1e-15));
   CHECK((plot.block(100, 2, 1, 2).transpose() - Q.C1.point).norm() < 1e-10);
 }
 
@@ -135,18 +135,18 @@ TEST_CASE("Cascade profile: closed simple contour with edge arcs and the maximum
   REQUIRE(V.rows() == 2 * (40 + 10));
   // The first point is the middle of the trailing-edge arc; the next ones go to C2 (suction).
   const Vector2d mid = (P.C2.point + P.K2.point) / 2 - P.O2;
-  CHECK((V.row(0).transpose() - P.O2).norm() == Approx(0.01).margin(1e-15));
+  CHECK((V.row(0).transpose() - P.O2).norm() == Approx(0.01).epsilon(0).margin(1e-15));
   // The arc C2 -> K2 spans 180 - gamma_2 < 180 degrees, so its middle lies in the direction of
   // the midpoint of the chord C2 K2 as seen from O2.
   CHECK((V.row(0).transpose() - P.O2).normalized().dot(mid.normalized()) ==
-        Approx(1).margin(1e-12));
+        Approx(1).epsilon(0).margin(1e-12));
   CHECK((V.row(1).transpose() - P.C2.point).norm() < (V.row(0).transpose() - P.C2.point).norm());
   CHECK((V.row(5).transpose() - P.C2.point).norm() < 1e-15); // suction side starts at C2
   // Edge arcs lie on their circles: trailing-edge points 0..4 and 95..99, leading edge 45..54.
   for (Index i : {0, 1, 4, 95, 99})
-    CHECK((V.row(i).transpose() - P.O2).norm() == Approx(0.01).margin(1e-15));
+    CHECK((V.row(i).transpose() - P.O2).norm() == Approx(0.01).epsilon(0).margin(1e-15));
   for (Index i = 45; i < 55; ++i)
-    CHECK((V.row(i).transpose() - P.O1).norm() == Approx(0.06).margin(1e-15));
+    CHECK((V.row(i).transpose() - P.O1).norm() == Approx(0.06).epsilon(0).margin(1e-15));
   CHECK((V.row(45).transpose() - P.C1.point).norm() < 1e-10);
   CHECK((V.row(55).transpose() - P.K1.point).norm() < 1e-10);
   // No two points coincide and no two edges cross: a simple closed polygon.
@@ -159,14 +159,14 @@ TEST_CASE("Cascade profile: closed simple contour with edge arcs and the maximum
     }
   // Maximum thickness: K3 is c_m from A along the inward normal; the circle's centre sits at
   // x = B (1 - position).
-  CHECK((P.K3.point - P.A.point).norm() == Approx(0.15).margin(1e-14));
+  CHECK((P.K3.point - P.A.point).norm() == Approx(0.15).epsilon(0).margin(1e-14));
   const Vector2d centre = (P.A.point + P.K3.point) / 2;
-  CHECK(centre.x() == Approx(1.0 * (1 - 0.35)).margin(1e-10));
+  CHECK(centre.x() == Approx(1.0 * (1 - 0.35)).epsilon(0).margin(1e-10));
   CHECK(P.K3.angle == P.A.angle);
   // A throat of 0 takes the default t sin(beta_2).
   CascadeParameters d = par;
   d.throat = 0;
-  CHECK(cascade_profile(d).throat == Approx(0.75 * std::sin(13 * kDeg)).margin(1e-15));
+  CHECK(cascade_profile(d).throat == Approx(0.75 * std::sin(13 * kDeg)).epsilon(0).margin(1e-15));
 }
 
 TEST_CASE("Cascade profile rejects bad and inconsistent parameters", "[splines][cascade]") {

@@ -44,7 +44,7 @@ TEST_CASE("Frenet: the book's circle, helix and line checks (digest T-B6)", "[sp
     const double S = 2 * M_PI / std::sqrt(2.0);
     const auto hel = integrate_frenet(constant(1), constant(1), VectorXd::Constant(1, S), {}, o);
     CHECK((hel[0].r - Vector3d(M_PI / std::sqrt(2.0), 0, M_PI / std::sqrt(2.0))).norm() < 1e-11);
-    CHECK(hel[0].r.x() == Approx(2.2214414691).margin(1e-10));
+    CHECK(hel[0].r.x() == Approx(2.2214414691).epsilon(0).margin(1e-10));
     // k = 0, tau = 1 -> the straight line (3, 0, 0) at s = 3.
     const auto line = integrate_frenet(constant(0), constant(1), VectorXd::Constant(1, 3.0), {}, o);
     CHECK((line[0].r - Vector3d(3, 0, 0)).norm() < 1e-12);
@@ -74,7 +74,7 @@ TEST_CASE("Frenet RK4 converges with order 4 on the helix", "[splines][frenet][c
   }
   const double order = test::fitted_order(hs, err);
   INFO("errors " << err[0] << " " << err[3] << ", order " << order);
-  CHECK(order == Approx(4.0).margin(0.2)); // classical Runge–Kutta
+  CHECK(order == Approx(4.0).epsilon(0).margin(0.2)); // classical Runge–Kutta
 }
 
 TEST_CASE("Frenet with piecewise-linear k and tau = 0 equals the planar natural curve",
@@ -82,7 +82,7 @@ TEST_CASE("Frenet with piecewise-linear k and tau = 0 equals the planar natural 
   // k rises linearly to 1.2 at s = 1.5, then falls to 0.2 at s = 4 (the book's "epure" shape).
   PiecewiseLinearLaw k{(VectorXd(3) << 0, 1.5, 4).finished(),
                        (VectorXd(3) << 0, 1.2, 0.2).finished()};
-  CHECK(evaluate(k, 0.75) == Approx(0.6).margin(1e-15));
+  CHECK(evaluate(k, 0.75) == Approx(0.6).epsilon(0).margin(1e-15));
   CHECK(evaluate(k, 5.0) == 0.2); // constant beyond the last break
   const auto f = integrate_frenet(k, constant(0), VectorXd::Constant(1, 4.0));
   // Planar reference: two natural pieces with linear curvature, by Gauss–Legendre quadrature.
@@ -97,7 +97,7 @@ TEST_CASE("Frenet with piecewise-linear k and tau = 0 equals the planar natural 
   const Eigen::Vector2d end = natural_point(b, 2.5);
   CHECK(std::abs(f[0].r.z()) < 1e-15);
   CHECK((f[0].r.head<2>() - end).norm() < 1e-11);
-  CHECK(std::atan2(f[0].t.y(), f[0].t.x()) == Approx(tangent_angle(b, 2.5)).margin(1e-11));
+  CHECK(std::atan2(f[0].t.y(), f[0].t.x()) == Approx(tangent_angle(b, 2.5)).epsilon(0).margin(1e-11));
 }
 
 TEST_CASE("Frenet rejects bad laws, frames and options", "[splines][frenet]") {

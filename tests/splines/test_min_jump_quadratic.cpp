@@ -48,12 +48,12 @@ TEST_CASE("T7: Theorem 2 spline is exact on quadratics (M = 6, J = 0)", "[spline
   const MinJumpQuadratic S = min_jump_quadratic(x, y);
   // Values of order 10 from a closed form and one short recurrence: a few ulps.
   for (Index i = 0; i < S.M.size(); ++i)
-    CHECK(S.M(i) == Approx(6.0).margin(1e-12));
+    CHECK(S.M(i) == Approx(6.0).epsilon(0).margin(1e-12));
   CHECK(jump_functional(S) < 1e-22);
   const VectorXd t = VectorXd::LinSpaced(201, 0, 2);
   const VectorXd s = evaluate(S, t);
   for (Index k = 0; k < t.size(); ++k)
-    CHECK(s(k) == Approx(3 * t(k) * t(k) - 2 * t(k) + 1).margin(1e-13));
+    CHECK(s(k) == Approx(3 * t(k) * t(k) - 2 * t(k) + 1).epsilon(0).margin(1e-13));
 }
 
 TEST_CASE("T8: Theorem 2 on x^3, nonuniform grid, exact rationals", "[splines][theorem2]") {
@@ -64,25 +64,25 @@ TEST_CASE("T8: Theorem 2 on x^3, nonuniform grid, exact rationals", "[splines][t
                       79207. / 11020, 221639. / 27550, 14023. / 1102};
   // Exact rationals; values up to 13, so 1e-13 absolute is a few ulps of the recurrence.
   for (Index i = 0; i < 6; ++i)
-    CHECK(S.M(i) == Approx(M[i]).margin(1e-13));
-  CHECK(jump_functional(S) == Approx(61617469. / 1377500).margin(1e-12));
-  CHECK(evaluate(S, one(0.75))(0) == Approx(366829. / 881600).margin(1e-14));
-  CHECK(evaluate(S, one(1.5))(0) == Approx(1170066. / 344375).margin(1e-14));
+    CHECK(S.M(i) == Approx(M[i]).epsilon(0).margin(1e-13));
+  CHECK(jump_functional(S) == Approx(61617469. / 1377500).epsilon(0).margin(1e-12));
+  CHECK(evaluate(S, one(0.75))(0) == Approx(366829. / 881600).epsilon(0).margin(1e-14));
+  CHECK(evaluate(S, one(1.5))(0) == Approx(1170066. / 344375).epsilon(0).margin(1e-14));
   // [MINE] regression value of the digest, 6 printed digits.
   CHECK(max_error(
-            S, [](double t) { return t * t * t; }, 0, 2, 4001) == Approx(0.022899).margin(1e-6));
+            S, [](double t) { return t * t * t; }, 0, 2, 4001) == Approx(0.022899).epsilon(0).margin(1e-6));
   // C^1: one-sided derivatives agree at the interior nodes (each side from its own piece).
   for (Index i = 1; i + 1 < x.size(); ++i) {
     const double h0 = x(i) - x(i - 1), h1 = x(i + 1) - x(i);
     const double left = (y(i) - y(i - 1)) / h0 + 0.5 * S.M(i - 1) * h0;
     const double right = (y(i + 1) - y(i)) / h1 - 0.5 * S.M(i) * h1;
-    CHECK(left == Approx(right).margin(1e-13));
+    CHECK(left == Approx(right).epsilon(0).margin(1e-13));
   }
   // Minimality: J is quadratic in M_{1,2}; moving it by +-0.01 raises J by the digest's 0.002204.
   for (double dm : {-0.01, 0.01}) {
     MinJumpQuadratic P = S;
     P.M = theorem2_recurrence(x, y, S.M(0) + dm);
-    CHECK(jump_functional(P) - jump_functional(S) == Approx(0.002204).margin(5e-7));
+    CHECK(jump_functional(P) - jump_functional(S) == Approx(0.002204).epsilon(0).margin(5e-7));
   }
 }
 
@@ -92,10 +92,10 @@ TEST_CASE("T9: Theorem 2 on x^3 at integer nodes (hand-checkable)", "[splines][t
   const MinJumpQuadratic S = min_jump_quadratic(x, y);
   const double M[] = {4, 8, 16, 20};
   for (Index i = 0; i < 4; ++i)
-    CHECK(S.M(i) == Approx(M[i]).margin(1e-13));
-  CHECK(jump_functional(S) == Approx(96).margin(1e-12));
-  CHECK(evaluate(S, one(0.5))(0) == Approx(0).margin(1e-14));
-  CHECK(evaluate(S, one(2.5))(0) == Approx(15.5).margin(1e-13));
+    CHECK(S.M(i) == Approx(M[i]).epsilon(0).margin(1e-13));
+  CHECK(jump_functional(S) == Approx(96).epsilon(0).margin(1e-12));
+  CHECK(evaluate(S, one(0.5))(0) == Approx(0).epsilon(0).margin(1e-14));
+  CHECK(evaluate(S, one(2.5))(0) == Approx(15.5).epsilon(0).margin(1e-13));
 }
 
 TEST_CASE("Theorem 2: recurrence, explicit form and brute-force minimum agree",
@@ -108,7 +108,7 @@ TEST_CASE("Theorem 2: recurrence, explicit form and brute-force minimum agree",
   const double m12 = theorem2_m12(x, y);
   const VectorXd a = theorem2_recurrence(x, y, m12), b = theorem2_explicit(x, y, m12);
   for (Index i = 0; i < a.size(); ++i)
-    CHECK(a(i) == Approx(b(i)).margin(1e-11 * std::max(1.0, std::abs(b(i)))));
+    CHECK(a(i) == Approx(b(i)).epsilon(0).margin(1e-11 * std::max(1.0, std::abs(b(i)))));
   // J(m) is a parabola in m: its vertex from three samples is the closed-form minimiser.
   const auto J = [&](double m) {
     MinJumpQuadratic S{x, y, theorem2_recurrence(x, y, m)};
@@ -116,11 +116,11 @@ TEST_CASE("Theorem 2: recurrence, explicit form and brute-force minimum agree",
   };
   const double d = 0.5, jm = J(m12 - d), j0 = J(m12), jp = J(m12 + d);
   const double vertex = m12 - d * (jp - jm) / (2 * (jp - 2 * j0 + jm));
-  CHECK(vertex == Approx(m12).margin(1e-9 * std::max(1.0, std::abs(m12))));
+  CHECK(vertex == Approx(m12).epsilon(0).margin(1e-9 * std::max(1.0, std::abs(m12))));
   // Two nodes: no jump to minimise, the chord.
   const MinJumpQuadratic L = min_jump_quadratic(vec({0, 2}), vec({1, 5}));
   CHECK(L.M(0) == 0.0);
-  CHECK(evaluate(L, one(0.5))(0) == Approx(2.0).margin(1e-15));
+  CHECK(evaluate(L, one(0.5))(0) == Approx(2.0).epsilon(0).margin(1e-15));
 }
 
 TEST_CASE("T10: Theorem 2 converges like O(h^3) on uniform and nonuniform grids",
@@ -154,8 +154,8 @@ TEST_CASE("T10: Theorem 2 converges like O(h^3) on uniform and nonuniform grids"
   const double pu = test::fitted_order(h, eu), pn = test::fitted_order(h, en);
   INFO("fitted orders: uniform " << pu << ", nonuniform " << pn);
   // Theorem 2 interpolates with a quadratic spline: third order in the max norm.
-  CHECK(pu == Approx(3.0).margin(0.1));
-  CHECK(pn == Approx(3.0).margin(0.1));
+  CHECK(pu == Approx(3.0).epsilon(0).margin(0.1));
+  CHECK(pn == Approx(3.0).epsilon(0).margin(0.1));
 }
 
 TEST_CASE("Theorem 2 rejects bad nodes", "[splines][theorem2]") {

@@ -37,11 +37,11 @@ TEST_CASE("G1 Hermite with linear curvature (§1.5): circle arc exactly, digest 
   // (0,0) at 45 deg -> (1,0) at -45 deg: a circle arc of radius 1/sqrt2 (closed form).
   const NaturalFit c = fit_linear_curvature(pose(0, 0, 45), pose(1, 0, -45));
   CHECK(c.miss < 1e-12);
-  CHECK(coef(c, 0, 1) == Approx(0).margin(1e-9)); // a
-  CHECK(coef(c, 0, 0) == Approx(-std::sqrt(2.0)).margin(1e-9));
-  CHECK(c.pieces[0].length == Approx(M_PI / (2 * std::sqrt(2.0))).margin(1e-9));
+  CHECK(coef(c, 0, 1) == Approx(0).epsilon(0).margin(1e-9)); // a
+  CHECK(coef(c, 0, 0) == Approx(-std::sqrt(2.0)).epsilon(0).margin(1e-9));
+  CHECK(c.pieces[0].length == Approx(M_PI / (2 * std::sqrt(2.0))).epsilon(0).margin(1e-9));
   // End angle is exact by the elimination of a.
-  CHECK(end_pose(c, 0).angle == Approx(-45 * kDeg).margin(1e-14));
+  CHECK(end_pose(c, 0).angle == Approx(-45 * kDeg).epsilon(0).margin(1e-14));
 
   // Digest §12 [MINE] regression values (10 digits printed; solutions converged to 1e-12 miss, so
   // the coefficients agree to ~1e-9).
@@ -56,9 +56,9 @@ TEST_CASE("G1 Hermite with linear curvature (§1.5): circle arc exactly, digest 
   for (const Case& k : cases) {
     const NaturalFit f = fit_linear_curvature(k.p0, k.p1);
     CHECK(f.miss < 1e-10);
-    CHECK(coef(f, 0, 1) == Approx(k.a).margin(2e-9));
-    CHECK(coef(f, 0, 0) == Approx(k.b).margin(2e-9));
-    CHECK(f.pieces[0].length == Approx(k.S).margin(2e-9));
+    CHECK(coef(f, 0, 1) == Approx(k.a).epsilon(0).margin(2e-9));
+    CHECK(coef(f, 0, 0) == Approx(k.b).epsilon(0).margin(2e-9));
+    CHECK(f.pieces[0].length == Approx(k.S).epsilon(0).margin(2e-9));
   }
   // The +30 deg case inflects: k changes sign along the arc (book Figs. 1.34–1.35).
   const NaturalFit inf = fit_linear_curvature(pose(0, 0, 60), pose(5, 3, 30));
@@ -71,7 +71,7 @@ TEST_CASE("Book mode: Hooke–Jeeves with trapezoid-2000 reaches the book's 1e-4
   const NaturalFit f = fit_linear_curvature(pose(0, 0, 45), pose(1, 0, -45), book);
   CHECK(f.miss <= 1e-4);
   // Within the book's accuracy of the exact circle arc.
-  CHECK(f.pieces[0].length == Approx(M_PI / (2 * std::sqrt(2.0))).margin(1e-3));
+  CHECK(f.pieces[0].length == Approx(M_PI / (2 * std::sqrt(2.0))).epsilon(0).margin(1e-3));
   // The book's G3 circle (Fig. 1.46) has 4 unknowns: direct search on the sum of distances
   // (1.17) stalls at a kink of the objective (digest §2.5 [V]) and the fit reports it ...
   CHECK_THROWS_WITH(
@@ -84,7 +84,7 @@ TEST_CASE("Book mode: Hooke–Jeeves with trapezoid-2000 reaches the book's 1e-4
       fit_quadratic_curvature_g3(pose(0, 0, 90), pose(1, 1, 0), pose(2, 0, -90), squares);
   CHECK(g.miss <= 1e-4);
   for (size_t i = 0; i < 2; ++i)
-    CHECK(g.pieces[i].length == Approx(M_PI / 2).margin(1e-3));
+    CHECK(g.pieces[i].length == Approx(M_PI / 2).epsilon(0).margin(1e-3));
 }
 
 TEST_CASE("Composite linear-curvature chain (§1.6) through points on a circle and with "
@@ -99,12 +99,12 @@ TEST_CASE("Composite linear-curvature chain (§1.6) through points on a circle a
   const NaturalFit chain = fit_linear_curvature_chain(poses);
   REQUIRE(chain.pieces.size() == 4);
   for (size_t i = 0; i < 4; ++i) {
-    CHECK(coef(chain, i, 1) == Approx(0).margin(1e-8));
-    CHECK(coef(chain, i, 0) == Approx(-1).margin(1e-8));
-    CHECK(chain.pieces[i].length == Approx((th[i] - th[i + 1]) * kDeg).margin(1e-9));
+    CHECK(coef(chain, i, 1) == Approx(0).epsilon(0).margin(1e-8));
+    CHECK(coef(chain, i, 0) == Approx(-1).epsilon(0).margin(1e-8));
+    CHECK(chain.pieces[i].length == Approx((th[i] - th[i + 1]) * kDeg).epsilon(0).margin(1e-9));
     // G1: every link ends at the next point with the next tangent.
     CHECK((end_pose(chain, i).point - poses[i + 1].point).norm() < 1e-10);
-    CHECK(end_pose(chain, i).angle == Approx(poses[i + 1].angle).margin(1e-14));
+    CHECK(end_pose(chain, i).angle == Approx(poses[i + 1].angle).epsilon(0).margin(1e-14));
   }
 
   // Tangents from the clamped cubic spline y(x) (Fig. 1.37); a cubic y(x) is reproduced, so its
@@ -117,7 +117,7 @@ TEST_CASE("Composite linear-curvature chain (§1.6) through points on a circle a
     P.row(i) << xs[i], y(xs[i]);
   const VectorXd phi = spline_tangent_angles(P, std::atan(dy(0)), std::atan(dy(3)));
   for (int i = 0; i < 5; ++i)
-    CHECK(phi(i) == Approx(std::atan(dy(xs[i]))).margin(1e-13));
+    CHECK(phi(i) == Approx(std::atan(dy(xs[i]))).epsilon(0).margin(1e-13));
   std::vector<CurvePose> sp;
   for (int i = 0; i < 5; ++i)
     sp.push_back({P.row(i).transpose(), phi(i)});
@@ -144,13 +144,13 @@ TEST_CASE("Quadratic curvature through 3 points (§1.7): digest regression value
   for (const Case& k : cases) {
     const NaturalFit f = fit_quadratic_curvature_3pt(pose(0, 0, 20), k.p1, k.p2);
     CHECK(f.miss < 1e-10);
-    CHECK(coef(f, 0, 2) == Approx(k.a).margin(1e-8));
-    CHECK(coef(f, 0, 1) == Approx(k.b).margin(1e-8));
-    CHECK(coef(f, 0, 0) == Approx(k.c).margin(1e-8));
-    CHECK(f.pieces[0].length == Approx(k.S1 + k.S2).margin(2e-8));
+    CHECK(coef(f, 0, 2) == Approx(k.a).epsilon(0).margin(1e-8));
+    CHECK(coef(f, 0, 1) == Approx(k.b).epsilon(0).margin(1e-8));
+    CHECK(coef(f, 0, 0) == Approx(k.c).epsilon(0).margin(1e-8));
+    CHECK(f.pieces[0].length == Approx(k.S1 + k.S2).epsilon(0).margin(2e-8));
     // Passes through P1 at s = S1 and ends at P2 with the prescribed angle.
     CHECK((natural_point(f.pieces[0], k.S1) - k.p1).norm() < 1e-7);
-    CHECK(end_pose(f, 0).angle == Approx(k.p2.angle).margin(1e-13));
+    CHECK(end_pose(f, 0).angle == Approx(k.p2.angle).epsilon(0).margin(1e-13));
   }
 }
 
@@ -160,38 +160,38 @@ TEST_CASE("Two-piece quadratic curvature with a G3 joint (§1.8)", "[splines][na
   const NaturalFit c = fit_quadratic_curvature_g3(pose(0, 0, 90), pose(1, 1, 0), pose(2, 0, -90));
   CHECK(c.miss < 1e-12);
   for (size_t i = 0; i < 2; ++i) {
-    CHECK(coef(c, i, 2) == Approx(0).margin(1e-9));
-    CHECK(coef(c, i, 1) == Approx(0).margin(1e-9));
-    CHECK(coef(c, i, 0) == Approx(-1).margin(1e-9));
-    CHECK(c.pieces[i].length == Approx(M_PI / 2).margin(1e-9));
+    CHECK(coef(c, i, 2) == Approx(0).epsilon(0).margin(1e-9));
+    CHECK(coef(c, i, 1) == Approx(0).epsilon(0).margin(1e-9));
+    CHECK(coef(c, i, 0) == Approx(-1).epsilon(0).margin(1e-9));
+    CHECK(c.pieces[i].length == Approx(M_PI / 2).epsilon(0).margin(1e-9));
   }
   // G3 at the joint: k, k' continuous (by construction (1.19), (1.20)); k'' jumps in general.
   const NaturalFit g =
       fit_quadratic_curvature_g3(pose(0, 0, 30), pose(2, 1, -10), pose(4, 0.5, 20));
   CHECK(g.miss < 1e-10);
   const PlanarNaturalCurve &s1 = g.pieces[0], &s2 = g.pieces[1];
-  CHECK(curvature(s1.law, s1.length) == Approx(curvature(s2.law, 0)).margin(1e-12));
-  CHECK(curvature(s1.law, s1.length, 1) == Approx(curvature(s2.law, 0, 1)).margin(1e-12));
+  CHECK(curvature(s1.law, s1.length) == Approx(curvature(s2.law, 0)).epsilon(0).margin(1e-12));
+  CHECK(curvature(s1.law, s1.length, 1) == Approx(curvature(s2.law, 0, 1)).epsilon(0).margin(1e-12));
   CHECK((s2.start - natural_point(s1, s1.length)).norm() == 0.0);
   // Digest §12 [MINE] regression values (8 to 10 digits printed).
-  CHECK(coef(g, 0, 2) == Approx(0.50537481).margin(1e-8));
-  CHECK(coef(g, 0, 1) == Approx(-1.80941442).margin(1e-8));
-  CHECK(coef(g, 0, 0) == Approx(0.89545178).margin(1e-8));
-  CHECK(s1.length == Approx(2.3367037996).margin(1e-9));
-  CHECK(coef(g, 1, 2) == Approx(0.16338205).margin(1e-8));
-  CHECK(coef(g, 1, 1) == Approx(0.55240807).margin(1e-8));
-  CHECK(coef(g, 1, 0) == Approx(-0.57317398).margin(1e-8));
-  CHECK(s2.length == Approx(2.1036985471).margin(1e-9));
+  CHECK(coef(g, 0, 2) == Approx(0.50537481).epsilon(0).margin(1e-8));
+  CHECK(coef(g, 0, 1) == Approx(-1.80941442).epsilon(0).margin(1e-8));
+  CHECK(coef(g, 0, 0) == Approx(0.89545178).epsilon(0).margin(1e-8));
+  CHECK(s1.length == Approx(2.3367037996).epsilon(0).margin(1e-9));
+  CHECK(coef(g, 1, 2) == Approx(0.16338205).epsilon(0).margin(1e-8));
+  CHECK(coef(g, 1, 1) == Approx(0.55240807).epsilon(0).margin(1e-8));
+  CHECK(coef(g, 1, 0) == Approx(-0.57317398).epsilon(0).margin(1e-8));
+  CHECK(s2.length == Approx(2.1036985471).epsilon(0).margin(1e-9));
   // Middle point (1, h) at 0 deg between (0,0) at 90 and (2,0) at -90 (digest [MINE]).
   const NaturalFit h =
       fit_quadratic_curvature_g3(pose(0, 0, 90), pose(1, 1.25, 0), pose(2, 0, -90));
-  CHECK(h.pieces[0].length == Approx(1.7906183254).margin(1e-9));
-  CHECK(h.pieces[1].length == Approx(1.7906183254).margin(1e-9));
-  CHECK(coef(h, 0, 2) == Approx(0.22135417).margin(1e-8));
-  CHECK(coef(h, 0, 1) == Approx(-0.79272167).margin(1e-8));
-  CHECK(coef(h, 0, 0) == Approx(-0.40408284).margin(1e-8));
-  CHECK(coef(h, 1, 0) == Approx(-1.11381381).margin(1e-8));
-  CHECK(coef(h, 1, 1) == Approx(0).margin(1e-8));
+  CHECK(h.pieces[0].length == Approx(1.7906183254).epsilon(0).margin(1e-9));
+  CHECK(h.pieces[1].length == Approx(1.7906183254).epsilon(0).margin(1e-9));
+  CHECK(coef(h, 0, 2) == Approx(0.22135417).epsilon(0).margin(1e-8));
+  CHECK(coef(h, 0, 1) == Approx(-0.79272167).epsilon(0).margin(1e-8));
+  CHECK(coef(h, 0, 0) == Approx(-0.40408284).epsilon(0).margin(1e-8));
+  CHECK(coef(h, 1, 0) == Approx(-1.11381381).epsilon(0).margin(1e-8));
+  CHECK(coef(h, 1, 1) == Approx(0).epsilon(0).margin(1e-8));
 }
 
 TEST_CASE("Cubic curvature through 3 points with 3 tangents (§1.9)", "[splines][natural][fit]") {
@@ -202,21 +202,21 @@ TEST_CASE("Cubic curvature through 3 points with 3 tangents (§1.9)", "[splines]
     return a * std::pow(s, 4) / 4 + b * std::pow(s, 3) / 3 + c * s * s / 2 + d * s;
   };
   const Vector2d ab = cubic_curvature_ab(phi(S1), phi(S2), S1, S2, c, d);
-  CHECK(ab(0) == Approx(a).margin(1e-13));
-  CHECK(ab(1) == Approx(b).margin(1e-13));
+  CHECK(ab(0) == Approx(a).epsilon(0).margin(1e-13));
+  CHECK(ab(1) == Approx(b).epsilon(0).margin(1e-13));
   const double Q1 = phi(S1) - c * S1 * S1 / 2 - d * S1, Q2 = phi(S2) - c * S2 * S2 / 2 - d * S2;
   const double den = std::pow(S1 * S2, 3) * (S1 - S2);
-  CHECK(ab(0) == Approx(4 * (Q1 * std::pow(S2, 3) - Q2 * std::pow(S1, 3)) / den).margin(1e-13));
-  CHECK(ab(1) == Approx(3 * (std::pow(S1, 4) * Q2 - std::pow(S2, 4) * Q1) / den).margin(1e-13));
+  CHECK(ab(0) == Approx(4 * (Q1 * std::pow(S2, 3) - Q2 * std::pow(S1, 3)) / den).epsilon(0).margin(1e-13));
+  CHECK(ab(1) == Approx(3 * (std::pow(S1, 4) * Q2 - std::pow(S2, 4) * Q1) / den).epsilon(0).margin(1e-13));
 
   // Circle: 90 -> (1,1) at 0 -> (2,0) at -90: a = b = c = 0, d = -1, S1 = pi/2, S2 = pi.
   const NaturalFit circ = fit_cubic_curvature_3pt(pose(0, 0, 90), pose(1, 1, 0), pose(2, 0, -90));
   CHECK(circ.miss < 1e-12);
-  CHECK(coef(circ, 0, 3) == Approx(0).margin(1e-8));
-  CHECK(coef(circ, 0, 2) == Approx(0).margin(1e-8));
-  CHECK(coef(circ, 0, 1) == Approx(0).margin(1e-8));
-  CHECK(coef(circ, 0, 0) == Approx(-1).margin(1e-8));
-  CHECK(circ.pieces[0].length == Approx(M_PI).margin(1e-9));
+  CHECK(coef(circ, 0, 3) == Approx(0).epsilon(0).margin(1e-8));
+  CHECK(coef(circ, 0, 2) == Approx(0).epsilon(0).margin(1e-8));
+  CHECK(coef(circ, 0, 1) == Approx(0).epsilon(0).margin(1e-8));
+  CHECK(coef(circ, 0, 0) == Approx(-1).epsilon(0).margin(1e-8));
+  CHECK(circ.pieces[0].length == Approx(M_PI).epsilon(0).margin(1e-9));
 
   // Digest §12 [MINE] regression values (8 digits printed).
   struct Case {
@@ -230,13 +230,13 @@ TEST_CASE("Cubic curvature through 3 points with 3 tangents (§1.9)", "[splines]
   for (const Case& k : cases) {
     const NaturalFit f = fit_cubic_curvature_3pt(k.p0, k.p1, k.p2);
     CHECK(f.miss < 1e-10);
-    CHECK(coef(f, 0, 3) == Approx(k.a).margin(1e-8));
-    CHECK(coef(f, 0, 2) == Approx(k.b).margin(1e-8));
-    CHECK(coef(f, 0, 1) == Approx(k.c).margin(1e-8));
-    CHECK(coef(f, 0, 0) == Approx(k.d).margin(1e-8));
-    CHECK(f.pieces[0].length == Approx(k.S2).margin(1e-8));
+    CHECK(coef(f, 0, 3) == Approx(k.a).epsilon(0).margin(1e-8));
+    CHECK(coef(f, 0, 2) == Approx(k.b).epsilon(0).margin(1e-8));
+    CHECK(coef(f, 0, 1) == Approx(k.c).epsilon(0).margin(1e-8));
+    CHECK(coef(f, 0, 0) == Approx(k.d).epsilon(0).margin(1e-8));
+    CHECK(f.pieces[0].length == Approx(k.S2).epsilon(0).margin(1e-8));
     CHECK((natural_point(f.pieces[0], k.S1) - k.p1.point).norm() < 1e-7);
-    CHECK(tangent_angle(f.pieces[0], k.S1) == Approx(k.p1.angle).margin(1e-9));
+    CHECK(tangent_angle(f.pieces[0], k.S1) == Approx(k.p1.angle).epsilon(0).margin(1e-9));
   }
 }
 

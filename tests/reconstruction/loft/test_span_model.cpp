@@ -66,7 +66,8 @@ TEST_CASE("Stations of parallel planes: positions along the common normal, any o
     // Exact planes: the normal and the stations to round-off of the point coordinates.
     CHECK(std::abs(std::abs(s.normal.dot(turn.col(2))) - 1) < 1e-12);
     for (Index k = 0; k < s.station.size(); ++k)
-      CHECK(s.station(k) - s.station(0) == Approx(z[static_cast<size_t>(k)]).margin(1e-12));
+      CHECK(s.station(k) - s.station(0) ==
+            Approx(z[static_cast<size_t>(k)]).epsilon(0).margin(1e-12));
     CHECK(s.spread < 1e-12);
   }
   // Reversed order: stations still increase from the first section to the last.
@@ -74,7 +75,7 @@ TEST_CASE("Stations of parallel planes: positions along the common normal, any o
   std::reverse(down.begin(), down.end());
   const SectionStations s = section_stations(points_of(down));
   CHECK(s.stacking == Stacking::parallel_planes);
-  CHECK(s.station(4) - s.station(0) == Approx(1.0));
+  CHECK(s.station(4) - s.station(0) == Approx(1.0).epsilon(1e-12));
 }
 
 TEST_CASE("Stations: tilted planes and warped stacks are not parallel planes", "[span]") {
@@ -262,7 +263,7 @@ TEST_CASE("Leave-one-out distances: the cross-validation's feet against a dense 
   };
   // Equal to round-off (distances ~1e-2 of coordinates ~20) where the folds stay closer to the
   // withheld sections than the blade is thick: Rotor 37 with stations or chord and degrees up
-  // to 5, the analytic blade #26 with every model.
+  // to 5, the analytic blade #26 with every model (its rms: below).
   for (const auto& [c, dense] : folds(rotor37(), 5)) {
     INFO("Rotor 37, " << to_string(c.parameters) << " " << c.degree);
     if (c.parameters == SpanParameters::uniform) { // as blade #10 below (measured +0.14 % rms)
@@ -271,13 +272,15 @@ TEST_CASE("Leave-one-out distances: the cross-validation's feet against a dense 
       CHECK(c.loo_rms <= 1.05 * dense(1));
       continue;
     }
-    CHECK(c.loo_max == Approx(dense(0)).margin(1e-13));
-    CHECK(c.loo_rms == Approx(dense(1)).margin(1e-13));
+    CHECK(c.loo_max == Approx(dense(0)).epsilon(0).margin(1e-13));
+    CHECK(c.loo_rms == Approx(dense(1)).epsilon(0).margin(1e-13));
   }
+  // Blade #26: the max to round-off, the rms to 1e-6 relative (with uniform spacing the two
+  // searches' rms differ by 8e-8 relative, 2.3e-9: feet that differ below the max's point).
   for (const auto& [c, dense] : folds(test::blade_case(26).sections, kMaxAutoSpanDegree)) {
     INFO("blade 26, " << to_string(c.parameters) << " " << c.degree);
-    CHECK(c.loo_max == Approx(dense(0)).margin(1e-13));
-    CHECK(c.loo_rms == Approx(dense(1)).margin(1e-13));
+    CHECK(c.loo_max == Approx(dense(0)).epsilon(0).margin(1e-13));
+    CHECK(c.loo_rms == Approx(dense(1)).epsilon(1e-6));
   }
   // Where a fold misses the withheld section by more than a thin edge is thick (blade #10: 0.02
   // at edge radii of ~1e-3; Rotor 37 with degree 9 or uniform spacing), a foot on the far side of

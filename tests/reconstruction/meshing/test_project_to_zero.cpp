@@ -70,7 +70,7 @@ TEST_CASE("roots_on_segments: corners of R-functions, NaN ends, exact zeros, bad
   Eigen::VectorXd FP(1), FQ(1);
   FP << 1;
   FQ << std::nan("");
-  CHECK(roots_on_segments(half, P, Q, FP, FQ)(0) == Approx(0.5).margin(1e-9));
+  CHECK(roots_on_segments(half, P, Q, FP, FQ)(0) == Approx(0.5).epsilon(0).margin(1e-9));
   // An end with F = 0 is the root.
   FQ << 0;
   CHECK(roots_on_segments(half, P, Q, FP, FQ)(0) == 1);
@@ -89,7 +89,7 @@ TEST_CASE("project_along: step, scan, narrow (seed 003 findBorder)", "[project]"
   CHECK(project_along(s, P, D, h, {}, &moved) == 0);
   CHECK(P.row(0).isApprox(Eigen::RowVector3d(1, 0, 0), 1e-9));
   CHECK(P.row(1).isApprox(Eigen::RowVector3d(1, 0, 0), 1e-9)); // from outside, inward
-  CHECK(P.row(2).norm() == Approx(1).margin(1e-9));
+  CHECK(P.row(2).norm() == Approx(1).epsilon(0).margin(1e-9));
   CHECK(P.row(3).isApprox(Eigen::RowVector3d(0, 0, 1), 0)); // F = 0 exactly: stays
   CHECK((moved == std::vector<char>{1, 1, 1, 1}));
 
@@ -101,7 +101,7 @@ TEST_CASE("project_along: step, scan, narrow (seed 003 findBorder)", "[project]"
   W << 0.7, 0, 0;
   N << -1, 0, 0; // the outward normal of the near face; the point is outside, so it walks +x
   CHECK(project_along(wall, W, N, Eigen::VectorXd::Constant(1, 0.5)) == 0);
-  CHECK(W(0, 0) == Approx(1).margin(1e-9));
+  CHECK(W(0, 0) == Approx(1).epsilon(0).margin(1e-9));
   // Nothing within 100 h: the point stays and is counted.
   Eigen::MatrixXd X(1, 3);
   X << 0.7, 0, 0;
