@@ -1,5 +1,6 @@
 #include "interlin/interflatation/models/ifl_codecs.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace interlin {
@@ -71,7 +72,7 @@ NodeGrid grid_from_block(const IflBlock& b) {
   const std::vector<double>& o = b.f64("origin", {3});
   g.origin = Eigen::Vector3d(o[0], o[1], o[2]);
   g.h = b.number("h");
-  if (!(g.h > 0))
+  if (!(g.h > 0 && std::isfinite(g.h)))
     b.fail("number 'h' must be > 0");
   const std::vector<std::int64_t>& n = b.i64("n", {3});
   for (int a = 0; a < 3; ++a) {
@@ -80,6 +81,12 @@ NodeGrid grid_from_block(const IflBlock& b) {
     g.n(a) = static_cast<int>(n[static_cast<size_t>(a)]);
   }
   g.values = b.f64("values", {g.n(2), g.n(1), g.n(0)});
+  // The values are signed distances to a boundary inside the grid: none is beyond its diagonal
+  // (twice, for slack). Larger ones are no distances and overflow the tricubic interpolant.
+  const double diagonal = g.h * (g.n.cast<double>() - 1).matrix().norm();
+  for (const double v : g.values)
+    if (!(std::abs(v) <= 2 * diagonal))
+      b.fail("array 'values': a value beyond twice the grid's diagonal is no distance");
   return g;
 }
 

@@ -87,6 +87,14 @@ void write_obj(std::ostream& out, const Eigen::MatrixXd& V, const Eigen::MatrixX
 
 namespace {
 
+// A PLY list length or index as read (any PLY scalar type, held as a double) for an error
+// message: shortest round-trip text, since casting one beyond long long's range is undefined.
+std::string scalar_text(double v) {
+  std::string out;
+  put_number(out, v, true);
+  return out;
+}
+
 // Triangles of a polygon as a fan from its first corner.
 void add_fan(const std::vector<long>& corners, std::vector<std::array<int, 3>>& tris) {
   for (std::size_t k = 1; k + 1 < corners.size(); ++k)
@@ -367,8 +375,8 @@ void read_instance(PlyData& data, const PlyElement& e, std::uint64_t i,
     }
     const double n = data.scalar(prop.count_type);
     if (!(n >= 0) || n != std::floor(n) || n > static_cast<double>(data.remaining()))
-      data.fail(e.name + " " + std::to_string(i) + ": list length " +
-                std::to_string(static_cast<long long>(n)) + " beyond the data");
+      data.fail(e.name + " " + std::to_string(i) + ": list length " + scalar_text(n) +
+                " beyond the data");
     for (long c = 0; c < static_cast<long>(n); ++c)
       data.scalar(prop.type);
   }
@@ -419,16 +427,15 @@ void parse_ply(string_view text, const std::string& path, Eigen::MatrixXd& V, Ei
         }
         const double n = data.scalar(prop.count_type);
         if (!(n >= 0) || n != std::floor(n) || n > static_cast<double>(data.remaining()))
-          data.fail(e.name + " " + std::to_string(i) + ": list length " +
-                    std::to_string(static_cast<long long>(n)) + " beyond the data");
+          data.fail(e.name + " " + std::to_string(i) + ": list length " + scalar_text(n) +
+                    " beyond the data");
         corners.clear();
         for (long c = 0; c < static_cast<long>(n); ++c) {
           const double idx = data.scalar(prop.type);
           if (face && static_cast<int>(k) == indices) {
             if (!(idx >= 0 && idx < static_cast<double>(xyz.size() / 3)) || idx != std::floor(idx))
-              data.fail("face " + std::to_string(i) + ": vertex index " +
-                        std::to_string(static_cast<long long>(idx)) + " outside [0, " +
-                        std::to_string(xyz.size() / 3) + ")");
+              data.fail("face " + std::to_string(i) + ": vertex index " + scalar_text(idx) +
+                        " outside [0, " + std::to_string(xyz.size() / 3) + ")");
             corners.push_back(static_cast<long>(idx));
           }
         }
