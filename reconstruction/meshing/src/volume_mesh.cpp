@@ -1,6 +1,7 @@
 // Seed 003, digest §6.2: the solid-element method for tetrahedra and hexahedra.
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 
+#include "interlin/reconstruction/meshing/cut_tetrahedra.h"
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
 
@@ -181,6 +182,79 @@ void untangle_boundary(const ImplicitFunction& f, double h, VolumeMesh& vm,
   }
 }
 
+// Step (4) of volume_mesh on any mesh whose boundary nodes lie on F = 0: functional (12) over the
+// boundary surface, then (15) over the interior; a projected layer's boundary facets folded by the
+// projection also slide on F = 0 (a cut boundary has none: its nodes stay on their grid edges).
+// Sets the largest |F| at a boundary node.
+void smooth_and_untangle(const ImplicitFunction& f, double h, const VolumeMeshOptions& o,
+                         bool projected, VolumeMesh& vm, VolumeMeshInfo& out) {
+  auto say = [&](const std::string& m) {
+    if (o.progress)
+      o.progress(m);
+  };
+  std::vector<int> row(vm.boundary.size(), -1);
+  std::vector<long> nodes;
+  for (size_t v = 0; v < vm.boundary.size(); ++v)
+    if (vm.boundary[v])
+      row[v] = int(nodes.size()), nodes.push_back(long(v));
+  if (o.surface_sweeps > 0) {
+    say("smoothing the boundary surface, " + std::to_string(o.surface_sweeps) +
+        " sweeps (functional 12)");
+    Eigen::MatrixXd Vb(long(nodes.size()), 3);
+    for (size_t r = 0; r < nodes.size(); ++r)
+      Vb.row(long(r)) = vm.V.row(nodes[r]);
+    Eigen::MatrixXi Fb = vm.B;
+    for (long i = 0; i < Fb.size(); ++i)
+      Fb.data()[i] = row[size_t(Fb.data()[i])];
+    if (Fb.cols() == 4)
+      Fb = triangulate_quads(Vb, Fb);
+    SurfaceSmoothingOptions so;
+    so.iterations = o.surface_sweeps;
+    so.threads = o.threads;
+    smooth_on_surface(f, Vb, Fb, so);
+    for (size_t r = 0; r < nodes.size(); ++r)
+      vm.V.row(nodes[r]) = Vb.row(long(r));
+  }
+  if (o.interior_sweeps > 0) {
+    if (projected) {
+      say("untangling the boundary surface (functional 13 on F = 0)");
+      untangle_surface(vm.V, vm.B, implicit_surface(f, h));
+    }
+    say("smoothing the interior, " + std::to_string(o.interior_sweeps) + " sweeps (functional 15)");
+    VolumeSmoothingOptions so;
+    so.sweeps = o.interior_sweeps;
+    so.threads = o.threads;
+    out.smoothing = smooth_volume(vm.V, vm.C, vm.boundary, so);
+    if (projected)
+      untangle_boundary(f, h, vm, so, out);
+  }
+  Points3 P(long(nodes.size()), 3);
+  for (size_t r = 0; r < nodes.size(); ++r)
+    P.row(long(r)) = vm.V.row(nodes[r]);
+  Eigen::VectorXd Fv(P.rows());
+  f.value(P, Fv);
+  out.max_boundary_f = P.rows() > 0 ? Fv.cwiseAbs().maxCoeff() : 0;
+}
+
+// The tetrahedral mesh of the background tetrahedra clipped at F = 0 (cut_tetrahedra): nodes on
+// internal zero sheets count as inside, the boundary is the facets used once.
+VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g, Eigen::VectorXd& S,
+                    const VolumeMeshOptions& o, VolumeMeshInfo& out) {
+  fill_zero_sheets(g, S, o.epsilon, o.threads);
+  out.inside_nodes = (S.array() > o.epsilon).count();
+  CutTetrahedra cut = cut_tetrahedra(f, g, S, o.epsilon, o.threads);
+  VolumeMesh vm;
+  vm.V = std::move(cut.V);
+  vm.C = std::move(cut.C);
+  out.inner_cells = cut.whole;
+  out.layer_elements = vm.C.rows() - cut.whole;
+  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C) : Eigen::MatrixXi(0, 3);
+  vm.boundary.assign(size_t(vm.V.rows()), 0);
+  for (long i = 0; i < vm.B.size(); ++i)
+    vm.boundary[size_t(vm.B.data()[i])] = 1;
+  return vm;
+}
+
 } // namespace
 
 Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C) {
@@ -249,6 +323,13 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
       std::to_string(g.nodes(2)) + " nodes, sampling F");
   Eigen::VectorXd S;
   sample_grid(f, g, S, o.threads);
+  if (tets && o.boundary == VolumeBoundary::cut) {
+    say("cutting the grid's tetrahedra at F = 0");
+    VolumeMesh vm = cut_mesh(f, g, S, o, out);
+    if (vm.C.rows() > 0)
+      smooth_and_untangle(f, g.spacing.minCoeff(), o, false, vm, out);
+    return vm;
+  }
   BoundaryMeshOptions bo;
   bo.cells = tets ? BackgroundCells::tetrahedra : BackgroundCells::hexahedra;
   bo.rule = o.rule;
@@ -325,32 +406,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     }
   }
 
-  if (o.surface_sweeps > 0) {
-    say("smoothing the boundary surface, " + std::to_string(o.surface_sweeps) +
-        " sweeps (functional 12)");
-    Eigen::MatrixXd Vb = m.V;
-    Eigen::MatrixXi Fb = m.P;
-    if (!tets)
-      Fb = triangulate_quads(Vb, Fb);
-    SurfaceSmoothingOptions so;
-    so.iterations = o.surface_sweeps;
-    so.threads = o.threads;
-    smooth_on_surface(f, Vb, Fb, so);
-    vm.V.bottomRows(n_top) = Vb;
-  }
-  if (o.interior_sweeps > 0) {
-    say("untangling the boundary surface (functional 13 on F = 0)");
-    untangle_surface(vm.V, vm.B, implicit_surface(f, g.spacing.minCoeff()));
-    say("smoothing the interior, " + std::to_string(o.interior_sweeps) + " sweeps (functional 15)");
-    VolumeSmoothingOptions so;
-    so.sweeps = o.interior_sweeps;
-    so.threads = o.threads;
-    out.smoothing = smooth_volume(vm.V, vm.C, vm.boundary, so);
-    untangle_boundary(f, g.spacing.minCoeff(), vm, so, out);
-  }
-  Eigen::VectorXd Fv(n_top);
-  f.value(vm.V.bottomRows(n_top), Fv);
-  out.max_boundary_f = n_top > 0 ? Fv.cwiseAbs().maxCoeff() : 0;
+  smooth_and_untangle(f, g.spacing.minCoeff(), o, true, vm, out);
   return vm;
 }
 

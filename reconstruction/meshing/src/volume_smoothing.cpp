@@ -107,6 +107,14 @@ struct LocalFunctional {
       *scaled_sum = sum;
     return top + std::log(sum);
   }
+
+  // Corners with alpha <= 0 at displacement d.
+  long folded(const Vec3& d) const {
+    long n = 0;
+    for (size_t k = 0; k < a.size(); ++k)
+      n += !(a[k] + g[k].dot(d) > 0);
+    return n;
+  }
 };
 
 // Newton iterations with backtracking on one node's convex local functional; returns the distance
@@ -132,9 +140,12 @@ double minimise_node(Eigen::MatrixXd& V, const Eigen::MatrixXi& C, const Eigen::
       break;
     double s = 1;
     bool accepted = false;
+    // exp(-t alpha) barely penalises a corner of an element much smaller than the mean turning
+    // over (t alpha ~ 0 either way): a step must not fold more corners than there are.
+    const long folded = L.folded(x);
     for (int b = 0; b < 30 && !accepted; ++b, s *= 0.5) {
       const double Ey = L(x + s * d);
-      if (Ey < E) {
+      if (Ey < E && L.folded(x + s * d) <= folded) {
         x += s * d;
         E = Ey;
         accepted = true;

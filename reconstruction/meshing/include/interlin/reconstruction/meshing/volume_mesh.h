@@ -20,8 +20,16 @@ namespace interlin {
 
 enum class VolumeElements { tetrahedra, hexahedra };
 
+// How the tetrahedral mesh meets F = 0. cut (default): the grid's tetrahedra clipped at the roots
+// of F on their edges (cut_tetrahedra; no inverted element by construction, thin walls down to a
+// node layer kept). projected: seed 003's layer of prisms between the inner cells' boundary facets
+// and their copies projected onto F = 0 (hexahedra always use it; it inverts elements where a
+// wall is thinner than about 4 cells or parts touch).
+enum class VolumeBoundary { cut, projected };
+
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
+  VolumeBoundary boundary = VolumeBoundary::cut; // tetrahedra only
   Eigen::AlignedBox3d box; // region (the grid covers it); empty: the function's own box
   int resolution = 64;     // cells along the box's longest side (grid_with_resolution) ...
   double cell = 0;         // ... unless a cell size h > 0 is given (grid_with_cell)
@@ -56,8 +64,9 @@ struct VolumeMeshInfo {
   long removed_cells = 0;    // background cells removed by the touching-configuration cleanup and
                              // (margin > 0) where the inner cells were one cell thin
   long inner_cells = 0;      // background cells kept (the elements copied unchanged)
-  long layer_elements = 0;   // boundary-layer elements (facets, or 3 tetrahedra per facet)
-  long unprojected = 0;      // boundary nodes whose projection found no sign change
+  long layer_elements = 0;   // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
+                             // the pieces of the cut background tetrahedra)
+  long unprojected = 0;      // boundary nodes whose projection found no sign change (cut: 0)
   double max_boundary_f = 0; // largest |F| at a boundary node
   VolumeSmoothingReport smoothing;
 };
@@ -71,7 +80,11 @@ struct VolumeMeshInfo {
 // (Dompierre et al.; neighbouring prisms agree on their shared quadrilaterals); (4)
 // o.surface_sweeps of functional (12) on the boundary surface (smooth_on_surface; quadrilaterals
 // split along their shorter diagonal), then o.interior_sweeps of (15) with the boundary fixed
-// (smooth_volume). The seed's published configurations (margin 0, tetrahedra with the strict rule,
+// (smooth_volume). Tetrahedra with o.boundary == cut (the default) replace steps (2)-(3) by
+// cut_tetrahedra (inside nodes by F > epsilon, nodes on internal zero sheets inside; the boundary
+// nodes are roots of F on grid edges, warped grid nodes among them) and keep their boundary fixed
+// in step (4); every smoothing step only accepts node moves that fold no further element corner.
+// The seed's published configurations (margin 0, tetrahedra with the strict rule,
 // hexahedra with the inclusive one) give its counts: 2158 boundary nodes and 4332 facets, 3064 and
 // 3072. Inputs:  f (value; gradient when available, else central differences, for the margin),
 //          o (std::invalid_argument for no box, bad resolution/cell, margin outside [0, 1))

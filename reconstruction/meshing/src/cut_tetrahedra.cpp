@@ -1,0 +1,273 @@
+// The background tetrahedra clipped at F = 0 (marching tetrahedra on the volume), the boundary of
+// interlin's default tetrahedral mesh (seed 003 §6.2's grid and smoothing, without its projected
+// layer).
+#include "interlin/reconstruction/meshing/cut_tetrahedra.h"
+
+#include "interlin/reconstruction/meshing/boundary_mesh.h"
+#include "interlin/reconstruction/meshing/project_to_zero.h"
+
+#include "parallel.h"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace interlin {
+
+namespace {
+
+using Tet = std::array<long, 4>;    // extended ids: grid node n, or G + e for the cut on edge e
+using Edge = std::pair<long, long>; // (inside node, outside node)
+
+// Node class: 1 inside, 0 on the surface, -1 outside.
+int node_class(double s, double epsilon) {
+  return s > epsilon ? 1 : s < -epsilon ? -1 : 0;
+}
+
+// The 3 tetrahedra of the prism with bottom p[0..2] and top p[3..5] (lateral edges p[i] p[i+3]):
+// each quadrilateral is cut along the diagonal from its smallest id, so prisms that share a
+// quadrilateral agree (Dompierre et al.; the rule never makes the three diagonals cyclic).
+void split_prism(const long p[6], std::vector<Tet>& out) {
+  const int m = int(std::min_element(p, p + 6) - p);
+  const int base = m < 3 ? 0 : 3, other = 3 - base, r = m % 3;
+  long v[6];
+  for (int i = 0; i < 3; ++i) {
+    v[i] = p[base + (r + i) % 3];
+    v[3 + i] = p[other + (r + i) % 3];
+  }
+  // v[0] is the smallest: both its quadrilaterals are cut from it, leaving the top triangle with
+  // v[0] and the pyramid v[0] + (v1 v2 v5 v4), cut from its own smallest corner.
+  out.push_back({v[0], v[3], v[4], v[5]});
+  if (std::min(v[1], v[5]) < std::min(v[2], v[4])) {
+    out.push_back({v[0], v[1], v[2], v[5]});
+    out.push_back({v[0], v[1], v[5], v[4]});
+  } else {
+    out.push_back({v[0], v[1], v[2], v[4]});
+    out.push_back({v[0], v[4], v[2], v[5]});
+  }
+}
+
+// The pieces of one background tetrahedron n[4] (grid nodes) with classes c[4] and at least one
+// inside node. cut(a, b) is the id of the point on edge (a inside, b outside); a surface node is
+// its own point on every edge to the outside.
+template <class Cut>
+void clip(const int n[4], const int c[4], Cut&& cut, std::vector<Tet>& out) {
+  int keep[4], drop[4], nk = 0, nd = 0;
+  for (int j = 0; j < 4; ++j)
+    (c[j] >= 0 ? keep[nk++] : drop[nd++]) = j;
+  auto at = [&](int k, int d) { // the point on the edge from keep[k] to drop[d]
+    return c[keep[k]] == 0 ? long(n[keep[k]]) : cut(n[keep[k]], n[drop[d]]);
+  };
+  if (nk == 1) {
+    out.push_back({n[keep[0]], at(0, 0), at(0, 1), at(0, 2)});
+  } else if (nk == 2) {
+    const long p[6] = {n[keep[0]], at(0, 0), at(0, 1), n[keep[1]], at(1, 0), at(1, 1)};
+    split_prism(p, out);
+  } else {
+    const long p[6] = {n[keep[0]], n[keep[1]], n[keep[2]], at(0, 0), at(1, 0), at(2, 0)};
+    split_prism(p, out);
+  }
+}
+
+double signed_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                     const Eigen::Vector3d& d) {
+  return (b - a).cross(c - a).dot(d - a);
+}
+
+} // namespace
+
+CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
+                             const Eigen::VectorXd& S, double epsilon, int threads) {
+  if (S.size() != g.size())
+    throw std::invalid_argument("cut_tetrahedra: S must hold one value per grid node");
+  if (!(epsilon >= 0))
+    throw std::invalid_argument("cut_tetrahedra: epsilon must be >= 0");
+  threads = detail::resolve_threads(threads);
+  const long nx = g.nodes(0), ny = g.nodes(1), cx = nx - 1, cy = ny - 1, cz = g.nodes(2) - 1;
+  const long G = g.size();
+  auto cls = [&](long n) { return node_class(S(n), epsilon); };
+  // Pass 1, layers of cubes in parallel: the background tetrahedra with an inside node, whole
+  // (no outside node) or mixed, and the edges to cut.
+  std::vector<std::vector<Tet>> whole(size_t(std::max(cz, 0L))), mixed(whole.size());
+  std::vector<std::vector<Edge>> edges(whole.size());
+  detail::parallel_for(cz, threads, [&](long k, int) {
+    std::vector<long> ids;
+    for (long q = k * cx * cy; q < (k + 1) * cx * cy; ++q) {
+      const long i = q % cx, j = (q / cx) % cy;
+      bool any = false;
+      for (int corner = 0; corner < 8 && !any; ++corner)
+        any = cls(g.index(i + (corner & 1), j + ((corner >> 1) & 1), k + (corner >> 2))) > 0;
+      for (long t = 0; any && t < 6; ++t)
+        ids.push_back(6 * q + t);
+    }
+    const Eigen::MatrixXi T = background_cell_nodes(g, BackgroundCells::tetrahedra, ids);
+    for (long r = 0; r < T.rows(); ++r) {
+      int c[4], inside = 0, outside = 0;
+      for (int j = 0; j < 4; ++j)
+        c[j] = cls(T(r, j)), inside += c[j] > 0, outside += c[j] < 0;
+      if (inside == 0)
+        continue;
+      const Tet t = {T(r, 0), T(r, 1), T(r, 2), T(r, 3)};
+      (outside == 0 ? whole : mixed)[size_t(k)].push_back(t);
+      for (int a = 0; outside > 0 && a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          if (c[a] > 0 && c[b] < 0)
+            edges[size_t(k)].push_back({t[size_t(a)], t[size_t(b)]});
+    }
+  });
+  std::vector<Edge> E;
+  for (const auto& l : edges)
+    E.insert(E.end(), l.begin(), l.end());
+  std::sort(E.begin(), E.end());
+  E.erase(std::unique(E.begin(), E.end()), E.end());
+  auto point = [&](long n) { return g.point(n % nx, (n / nx) % ny, n / (nx * ny)); };
+  // The cut points: roots of F on the edges, and (for orientation) of the linear interpolant.
+  const long ne = long(E.size());
+  Points3 A(ne, 3), B(ne, 3);
+  Eigen::VectorXd FA(ne), FB(ne), lin(ne);
+  for (long e = 0; e < ne; ++e) {
+    A.row(e) = point(E[size_t(e)].first).transpose();
+    B.row(e) = point(E[size_t(e)].second).transpose();
+    FA(e) = S(E[size_t(e)].first), FB(e) = S(E[size_t(e)].second);
+    lin(e) = FA(e) / (FA(e) - FB(e));
+  }
+  RootOptions ro;
+  ro.threads = threads;
+  const Eigen::VectorXd t = ne > 0 ? roots_on_segments(f, A, B, FA, FB, ro) : Eigen::VectorXd();
+  auto cut = [&](long a, long b) {
+    return G + long(std::lower_bound(E.begin(), E.end(), Edge{a, b}) - E.begin());
+  };
+  auto reference = [&](long id) -> Eigen::Vector3d {
+    if (id < G)
+      return point(id);
+    const long e = id - G;
+    return A.row(e).transpose() + lin(e) * (B.row(e) - A.row(e)).transpose();
+  };
+  // Warping (Labelle and Shewchuk's isosurface stuffing): a node within kWarp of its edge from a
+  // cut point moves onto the nearest such point and becomes a surface node, so that no piece is
+  // a sliver at a node. Along an edge of a Kuhn tetrahedron a node moves at most kWarp sqrt(3) h,
+  // less than the smallest height of the tetrahedra around it (h / sqrt 2): they stay positive.
+  constexpr double kWarp = 0.2;
+  std::vector<std::pair<long, std::pair<double, long>>> near; // node, (distance, edge)
+  for (long e = 0; e < ne; ++e) {
+    const double len = (B.row(e) - A.row(e)).norm();
+    if (t(e) < kWarp)
+      near.push_back({E[size_t(e)].first, {t(e) * len, e}});
+    else if (t(e) > 1 - kWarp)
+      near.push_back({E[size_t(e)].second, {(1 - t(e)) * len, e}});
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<std::pair<long, long>> warp; // node, edge whose cut point it moves to
+  for (size_t r = 0; r < near.size(); ++r)
+    if (r == 0 || near[r].first != near[r - 1].first)
+      warp.push_back({near[r].first, near[r].second.second});
+  auto warped = [&](long n) {
+    const auto it = std::lower_bound(warp.begin(), warp.end(), std::pair<long, long>{n, -1});
+    return it != warp.end() && it->first == n ? it->second : -1L;
+  };
+  auto cls2 = [&](long n) { return warped(n) >= 0 ? 0 : cls(n); };
+  // Pass 2: whole tetrahedra and the pieces of the cut ones, oriented by their reference shape
+  // (grid positions, cut points of the linear interpolant, warped nodes as surface nodes there:
+  // convex pieces), without the degenerate ones.
+  std::vector<std::vector<Tet>> pieces(whole.size()), flat(whole.size());
+  detail::parallel_for(cz, threads, [&](long k, int) {
+    std::vector<Tet> local;
+    std::vector<Tet>& kept = whole[size_t(k)];
+    std::vector<Tet> all;
+    all.swap(kept);
+    all.insert(all.end(), mixed[size_t(k)].begin(), mixed[size_t(k)].end());
+    for (const Tet& m : all) {
+      const int n[4] = {int(m[0]), int(m[1]), int(m[2]), int(m[3])};
+      const int c[4] = {cls2(m[0]), cls2(m[1]), cls2(m[2]), cls2(m[3])};
+      if (std::max({c[0], c[1], c[2], c[3]}) < 1) {
+        if (std::min({c[0], c[1], c[2], c[3]}) == 0) // all on F = 0: inside or not, see below
+          flat[size_t(k)].push_back(m);
+        continue;
+      }
+      if (std::min({c[0], c[1], c[2], c[3]}) >= 0) {
+        kept.push_back(m);
+        continue;
+      }
+      local.clear();
+      clip(n, c, cut, local);
+      for (Tet p : local) {
+        std::array<long, 4> s = p;
+        std::sort(s.begin(), s.end());
+        if (std::adjacent_find(s.begin(), s.end()) != s.end())
+          continue;
+        if (signed_volume(reference(p[0]), reference(p[1]), reference(p[2]), reference(p[3])) < 0)
+          std::swap(p[1], p[2]);
+        pieces[size_t(k)].push_back(p);
+      }
+    }
+  });
+  // Tetrahedra with every node warped onto F = 0: kept where F > epsilon at the centroid of the
+  // warped nodes (a wall about a cell thin), else the body does not fill them.
+  auto position = [&](long n) -> Eigen::Vector3d {
+    const long e = warped(n);
+    return e < 0 ? point(n) : Eigen::Vector3d(A.row(e) + t(e) * (B.row(e) - A.row(e)));
+  };
+  std::vector<Tet> candidates;
+  for (const auto& l : flat)
+    candidates.insert(candidates.end(), l.begin(), l.end());
+  Points3 centroid(long(candidates.size()), 3);
+  for (size_t r = 0; r < candidates.size(); ++r) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (long n : candidates[r])
+      c += position(n) / 4;
+    centroid.row(long(r)) = c.transpose();
+  }
+  Eigen::VectorXd Fc(centroid.rows());
+  if (centroid.rows() > 0)
+    f.value(centroid, Fc);
+  std::vector<Tet> filled;
+  for (size_t r = 0; r < candidates.size(); ++r)
+    if (Fc(long(r)) > epsilon)
+      filled.push_back(candidates[r]);
+  // Compact numbering: the used grid nodes in grid order, then the cut points in edge order.
+  std::vector<long> used;
+  long rows = 0;
+  whole.push_back(std::move(filled));
+  pieces.emplace_back();
+  for (size_t k = 0; k < whole.size(); ++k)
+    for (const auto* l : {&whole[k], &pieces[k]}) {
+      rows += long(l->size());
+      for (const Tet& x : *l)
+        used.insert(used.end(), x.begin(), x.end());
+    }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  CutTetrahedra out;
+  out.V.resize(long(used.size()), 3);
+  for (size_t r = 0; r < used.size(); ++r) {
+    const long id = used[r];
+    if (id < G) {
+      out.V.row(long(r)) = position(id).transpose();
+      out.warped += warped(id) >= 0;
+    } else {
+      const long e = id - G;
+      out.V.row(long(r)) = A.row(e) + t(e) * (B.row(e) - A.row(e));
+      ++out.cut_nodes;
+    }
+  }
+  out.C.resize(rows, 4);
+  long row = 0;
+  auto emit = [&](const std::vector<Tet>& l) {
+    for (const Tet& x : l) {
+      for (int j = 0; j < 4; ++j)
+        out.C(row, j) =
+            int(std::lower_bound(used.begin(), used.end(), x[size_t(j)]) - used.begin());
+      ++row;
+    }
+  };
+  for (const auto& l : whole)
+    emit(l);
+  out.whole = row;
+  for (const auto& l : pieces)
+    emit(l);
+  return out;
+}
+
+} // namespace interlin
