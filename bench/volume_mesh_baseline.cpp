@@ -3,7 +3,8 @@
 // the same R-function model, in one run: element counts, the quality figures of volume_quality
 // for both meshes, the volume, the largest |F| at a boundary node, and the time (median of the
 // repeats, with the spread) with the ratio CGAL / interlin. interlin runs on 1 thread (CGAL is
-// sequential here) and on all cores. A timed CLI run (docs/benchmarks.md, "Volume meshes").
+// sequential here) and on all cores, and with seed 003's projected boundary layer on 1 thread (the
+// default is the clipped grid). A timed CLI run (docs/benchmarks.md, "Volume meshes").
 //
 // Usage: volume_mesh_baseline [--repeat N] [--cgal-size S] MODEL.rf CELL [MODEL.rf CELL ...]
 //   CELL  interlin's grid cell; CGAL's facet_size and cell_size are S x CELL (default S = 1),
@@ -63,15 +64,19 @@ double max_abs_f(const ImplicitFunction& f, const Eigen::MatrixXd& V, const Eige
   return P.rows() ? F.cwiseAbs().maxCoeff() : 0;
 }
 
-Run run_interlin(const ImplicitFunction& f, double h, int threads, int repeat) {
+Run run_interlin(const ImplicitFunction& f, double h, int threads, int repeat,
+                 VolumeBoundary boundary = VolumeBoundary::cut) {
   VolumeMeshOptions o;
   o.cell = h;
   o.threads = threads;
+  o.boundary = boundary;
   VolumeMesh m;
   Run r;
   const unsigned n =
       threads > 0 ? unsigned(threads) : std::max(1u, std::thread::hardware_concurrency());
-  r.method = "interlin volume_mesh tet, " + std::to_string(n) + " thread" + (n == 1 ? "" : "s");
+  r.method = std::string("interlin volume_mesh tet") +
+             (boundary == VolumeBoundary::projected ? " --boundary projected" : "") + ", " +
+             std::to_string(n) + " thread" + (n == 1 ? "" : "s");
   r.seconds = timed(repeat, [&] { m = volume_mesh(f, o); });
   r.q = volume_quality(m.V, m.C);
   r.nodes = m.V.rows();
@@ -155,6 +160,7 @@ int main(int argc, char** argv) {
     const double ref = median(one.seconds);
     print(model, h, one, ref);
     print(model, h, run_interlin(f, h, 0, repeat), ref);
+    print(model, h, run_interlin(f, h, 1, repeat, VolumeBoundary::projected), ref);
     print(model, h, run_cgal(f, h, size_factor, repeat), ref);
   }
 }

@@ -76,16 +76,34 @@ Examples:
 
 Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element analysis):
   outputs .vtu (ParaView), .msh (Gmsh 4.1), .inp (Abaqus/CalculiX), plus .stl .obj .ply .off
-  (the boundary surface) and .png. The grid cells wholly inside the body (nodes nearer to
-  F = 0 than the margin count as outside) are kept; each boundary facet and its projection
-  onto F = 0 make one hexahedron, or a prism cut into 3 tetrahedra; then the interior nodes
-  minimise seed 003's corner functional (15) and folded boundary facets slide on F = 0.
-  --volume tet|hex       tetrahedra (the grid's cubes cut into 6) or hexahedra
-  --margin M             nodes nearer to F = 0 than M cells are outside (default 0.35)
+  (the boundary surface) and .png. Tetrahedra: the grid's cubes cut into 6 tetrahedra, those
+  crossing F = 0 clipped at the roots of F on their edges (grid nodes within 0.2 of an edge
+  from F = 0 moved onto it); no element is inverted, walls from 1.5 cells thick are kept.
+  Hexahedra (and --boundary projected): the grid cells wholly inside the body (nodes nearer
+  to F = 0 than the margin count as outside) are kept and each boundary facet and its
+  projection onto F = 0 make one hexahedron or a prism of 3 tetrahedra (seed 003's layer;
+  walls thinner than about 4 cells fold it). Then the interior nodes minimise seed 003's
+  corner functional (15), never folding an element further.
+  --volume tet|hex       tetrahedra or hexahedra
+  --boundary cut|projected
+                         tetrahedra: the clipped grid (default) or seed 003's projected layer
+  --margin M             projected layer: nodes nearer to F = 0 than M cells are outside
+                         (default 0.35)
   --sweeps K             sweeps of the interior functional (default 8; seed 003: 8-10)
-  --seed-rule            seed 003's own classification (margin 0; F > 0 for tetrahedra,
-                         F >= 0 for hexahedra): reproduces its published counts
+  --seed-rule            seed 003's own classification (projected layer, margin 0; F > 0
+                         for tetrahedra, F >= 0 for hexahedra): reproduces its published
+                         counts
   --smooth K             K sweeps of functional (12) over the boundary nodes
+  --adapt N              tetrahedra: N passes of seed 003's adaptive refinement (§7.2):
+                         elements where the nodal quantity changes by more than
+                         --adapt-delta of its range, and their vertex neighbours, are split
+                         by conforming templates (2, 4 or 8 children; new boundary nodes
+                         onto F = 0), then the interior is smoothed again. Hexahedra: not
+                         offered (conforming hexahedral refinement needs transition
+                         templates)
+  --adapt-delta D        indicator threshold in [0, 1) (default 0.2)
+  --adapt-var NAME       the nodal quantity: variable NAME of the .rf model (a stress estimate,
+                         a distance to a load, ...); default the body function F itself
   --max-elements N       most elements the grid may hold, 6 tetrahedra or 1 hexahedron
                          per cell (default 25000000 tetrahedra, 12500000 hexahedra:
                          about 4 GB of memory when the body fills the grid)
@@ -93,6 +111,7 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
   inverted elements (an error unless 0), max |F| at the boundary nodes and the volume.
   interlin mesh data/models/body11.rf -o body11.msh -o body11.vtu --volume tet --resolution 40
   interlin mesh data/models/body11.rf -o body11.inp --volume hex --resolution 20 --seed-rule
+  interlin mesh data/models/body11.rf -o body11.vtu --volume tet --resolution 20 --adapt 2
 )";
 
 namespace {
@@ -177,7 +196,8 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   if (outputs.empty())
     throw UsageError("nothing to do: give -o FILE");
   const bool volume = a.has("volume");
-  for (const char* only : {"margin", "sweeps", "seed-rule", "max-elements"})
+  for (const char* only : {"margin", "boundary", "sweeps", "seed-rule", "max-elements", "adapt",
+                           "adapt-delta", "adapt-var"})
     if (!volume && a.has(only))
       throw UsageError(std::string("--") + only + " needs --volume tet|hex");
   if (volume && (a.has("subboxes") || a.has("no-project") || a.has("flip")))
@@ -222,6 +242,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
     r.quiet = quiet;
     r.azimuth = azimuth;
     r.elevation = elevation;
+    r.model = mo;
     mesh_volume(a, f, r, progress, written);
     return;
   }

@@ -1,10 +1,12 @@
 // interlin mesh --volume: implicit solid -> tetrahedral or hexahedral mesh for analysis.
 #include "cmd_mesh_volume.h"
 
+#include "interlin/interflatation/load_implicit.h"
 #include "interlin/reconstruction/io/input_error.h"
 #include "interlin/reconstruction/io/mesh_io.h"
 #include "interlin/reconstruction/io/preview.h"
 #include "interlin/reconstruction/io/volume_mesh_io.h"
+#include "interlin/reconstruction/meshing/adaptive_refinement.h"
 #include "interlin/reconstruction/meshing/boundary_mesh.h"
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 #include "interlin/reconstruction/meshing/volume_quality.h"
@@ -57,11 +59,67 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
     if (!(o.margin >= 0 && o.margin < 1))
       throw UsageError("--margin: expected a number in [0, 1), got " + a.get("margin"));
   }
+  if (a.has("boundary")) {
+    if (o.elements == VolumeElements::hexahedra)
+      throw UsageError("--boundary applies to --volume tet (hexahedra always use the projected "
+                       "layer)");
+    o.boundary = parse_choice("boundary", a.get("boundary"), {"cut", "projected"}) == "cut"
+                     ? VolumeBoundary::cut
+                     : VolumeBoundary::projected;
+  }
+  if (a.has("margin") && o.elements == VolumeElements::tetrahedra &&
+      o.boundary == VolumeBoundary::cut)
+    throw UsageError("--margin applies to the projected layer (--boundary projected or --volume "
+                     "hex)");
   if (a.has("seed-rule")) { // seed 003's published configurations
+    if (a.has("boundary") && o.boundary == VolumeBoundary::cut)
+      throw UsageError("--seed-rule uses the projected layer, not --boundary cut");
+    o.boundary = VolumeBoundary::projected;
     o.margin = 0;
     o.rule = o.elements == VolumeElements::hexahedra ? ZeroRule::inclusive : ZeroRule::strict;
   }
   return o;
+}
+
+// --adapt N: N passes of refine_tetrahedra on the nodal quantity (--adapt-var of the model, or
+// F), then the interior smoothed again (the templates' children are valid but uneven). Returns
+// the reports of the passes made.
+std::vector<RefinementReport> adapt(const ParsedArgs& a, const ImplicitFunction& f,
+                                    const VolumeRequest& r, const VolumeMeshOptions& o,
+                                    const Progress& progress, VolumeMesh& m) {
+  if (o.elements == VolumeElements::hexahedra)
+    throw UsageError("--adapt applies to --volume tet (conforming hexahedral refinement needs "
+                     "transition templates)");
+  const int passes = parse_int("adapt", a.get("adapt"), 1, 10);
+  const double delta = parse_double("adapt-delta", a.get("adapt-delta", "0.2"));
+  if (!(delta >= 0 && delta < 1))
+    throw UsageError("--adapt-delta: expected a number in [0, 1), got " + a.get("adapt-delta"));
+  ImplicitFunction field = f;
+  if (a.has("adapt-var")) {
+    if (lower_extension(r.input) != ".rf")
+      throw UsageError("--adapt-var names a variable of an .rf model");
+    ModelOptions mo = r.model;
+    mo.output = a.get("adapt-var");
+    field = load_implicit(r.input, mo);
+  }
+  progress("adaptive refinement, " + std::to_string(passes) + " passes (delta " + fmt(delta, 3) +
+           ")");
+  const auto values = [&](const Eigen::MatrixXd& V, const Eigen::MatrixXi&) {
+    Eigen::VectorXd v(V.rows());
+    field.value(V, v);
+    if (!v.allFinite())
+      throw std::runtime_error("--adapt: the nodal quantity is not finite at a node");
+    return v;
+  };
+  const std::vector<RefinementReport> reports =
+      adapt_tetrahedra(m.V, m.C, m.boundary, values, delta, passes, f);
+  m.B = boundary_facets(m.C);
+  VolumeSmoothingOptions so;
+  so.sweeps = o.interior_sweeps;
+  so.threads = o.threads;
+  if (so.sweeps > 0)
+    smooth_volume(m.V, m.C, m.boundary, so);
+  return reports;
 }
 
 void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMeshInfo& info,
@@ -98,11 +156,10 @@ bool volume_output_ok(const std::string& path) {
 }
 
 std::vector<OptionSpec> volume_options() {
-  return {{"volume", 0, true, false},
-          {"margin", 0, true, false},
-          {"sweeps", 0, true, false},
-          {"seed-rule", 0, false, false},
-          {"max-elements", 0, true, false}};
+  return {
+      {"volume", 0, true, false}, {"margin", 0, true, false},      {"boundary", 0, true, false},
+      {"sweeps", 0, true, false}, {"seed-rule", 0, false, false},  {"max-elements", 0, true, false},
+      {"adapt", 0, true, false},  {"adapt-delta", 0, true, false}, {"adapt-var", 0, true, false}};
 }
 
 void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeRequest& r,
@@ -110,15 +167,36 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   VolumeMeshOptions o = volume_options_of(a, r);
   o.progress = progress;
   VolumeMeshInfo info;
-  const VolumeMesh m = volume_mesh(f, o, &info);
+  VolumeMesh m = volume_mesh(f, o, &info);
   if (m.C.rows() == 0)
     throw_input_error(r.input, 0,
                       "no volume mesh: no grid cell lies inside the body (refine the grid with "
                       "--resolution or --cell, or check the box)");
+  const long before = m.C.rows();
+  const std::vector<RefinementReport> passes =
+      a.has("adapt") ? adapt(a, f, r, o, progress, m) : std::vector<RefinementReport>{};
+  if (!passes.empty()) { // the refined boundary's nodes
+    Eigen::MatrixXd SV;
+    Eigen::MatrixXi SF;
+    boundary_surface(m, SV, SF);
+    Eigen::VectorXd F(SV.rows());
+    f.value(SV, F);
+    info.max_boundary_f = F.size() > 0 ? F.cwiseAbs().maxCoeff() : 0;
+  }
   progress("checking the elements");
   std::vector<ElementQuality> per;
   const VolumeQuality q = volume_quality(m.V, m.C, r.threads, &per);
   print_summary(r, m, info, q, o);
+  if (a.has("adapt")) {
+    std::cout << "  adapted      " << passes.size() << " passes, " << before << " -> " << m.C.rows()
+              << " tetrahedra (flagged";
+    for (const RefinementReport& p : passes)
+      std::cout << " " << p.flagged;
+    std::cout << "; new boundary nodes on F = 0";
+    for (const RefinementReport& p : passes)
+      std::cout << " " << p.projected;
+    std::cout << ")\n";
+  }
   if (q.inverted > 0)
     throw std::runtime_error(std::to_string(q.inverted) +
                              " inverted elements (features thinner than a few cells: refine the "

@@ -5,6 +5,7 @@
 #include "cli_common.h"
 
 #include "interlin/interflatation/implicit_function.h"
+#include "interlin/interflatation/rfunctions/model.h"
 
 #include <Eigen/Geometry>
 #include <string>
@@ -23,14 +24,15 @@ struct VolumeRequest {
   std::vector<std::string> outputs; // -o files (extensions checked by volume_output_ok)
   int azimuth = 45, elevation = 25; // --view of the .png preview
   bool quiet = false;
+  ModelOptions model; // how the model was read (--set, --var), for --adapt-var
 };
 
 // Whether `path` is an output `interlin mesh --volume` can write (.vtu .msh .inp for the
 // elements, .stl .obj .ply .off for the boundary surface, .png for its preview).
 bool volume_output_ok(const std::string& path);
 
-// The volume options of `interlin mesh` (--volume, --margin, --sweeps, --seed-rule, --adapt,
-// --adapt-delta, --adapt-var) for the parser.
+// The volume options of `interlin mesh` (--volume, --boundary, --margin, --sweeps, --seed-rule,
+// --adapt, --adapt-delta, --adapt-var, --max-elements) for the parser.
 std::vector<OptionSpec> volume_options();
 
 // Parses the volume options, meshes, prints the summary, writes the outputs (appending each to

@@ -29,13 +29,16 @@ TEST_CASE("CLI mesh --volume: usage errors", "[cli][mesh][volume]") {
   write_file(d / "ball.rf", kBall);
   const std::string m = d / "ball.rf";
   for (const std::string& bad : std::vector<std::string>{
-           "mesh " + m + " -o x.msh --volume prism",                        // unknown kind
-           "mesh " + m + " -o x.xyz --volume tet",                          // unknown format
-           "mesh " + m + " -o x.stl --margin 0.2",                          // needs --volume
-           "mesh " + m + " -o x.msh --volume tet --margin 1",               // range
-           "mesh " + m + " -o x.msh --volume tet --seed-rule --margin 0.1", // exclusive
-           "mesh " + m + " -o x.msh --volume hex --subboxes 2",             // surface only
-           "mesh " + m + " -o x.msh --volume hex --sweeps -1"}) {           // range
+           "mesh " + m + " -o x.msh --volume prism",                         // unknown kind
+           "mesh " + m + " -o x.xyz --volume tet",                           // unknown format
+           "mesh " + m + " -o x.stl --margin 0.2",                           // needs --volume
+           "mesh " + m + " -o x.msh --volume tet --margin 1",                // range
+           "mesh " + m + " -o x.msh --volume tet --seed-rule --margin 0.1",  // exclusive
+           "mesh " + m + " -o x.msh --volume hex --subboxes 2",              // surface only
+           "mesh " + m + " -o x.msh --volume hex --sweeps -1",               // range
+           "mesh " + m + " -o x.msh --volume hex --adapt 1",                 // tetrahedra only
+           "mesh " + m + " -o x.msh --volume tet --adapt 1 --adapt-delta 1", // range
+           "mesh " + m + " -o x.stl --adapt 1"}) {                           // needs --volume
     const Run r = run(bad + " -q");
     INFO(bad << " -> " << r.err);
     CHECK(r.status == 2);
@@ -94,4 +97,34 @@ TEST_CASE("CLI mesh --volume --seed-rule: seed 003's counts for body (11)", "[cl
     CHECK(files_in(d) == (r.status == 0 ? 1u : 0u));
     fs::remove(d / "m.inp");
   }
+}
+
+TEST_CASE("CLI mesh --volume tet --adapt: refinement where the model's field varies",
+          "[cli][mesh][volume]") {
+  // A peak of g at (0.5, 0, 0): the first pass splits the elements where g changes by more than
+  // 0.2 of its range (near the peak) and their vertex neighbours; the mesh stays valid, its new
+  // boundary nodes on F = 0.
+  TempDir d("climeshvol");
+  write_file(d / "ball.rf", std::string(kBall) + "g = 1 / (0.05 + (x - 0.5)^2 + y^2 + z^2);\n");
+  const std::string base =
+      "mesh " + (d / "ball.rf") + " --volume tet --resolution 12 -o " + (d / "b.vtu");
+  const Run plain = run(base);
+  const Run adapted = run(base + " --adapt 2 --adapt-var g");
+  INFO(plain.out << adapted.out << adapted.err);
+  REQUIRE(plain.status == 0);
+  REQUIRE(adapted.status == 0);
+  CHECK_THAT(adapted.out,
+             Catch::Contains("adapted      2 passes") && Catch::Contains("inverted 0"));
+  auto count = [](const std::string& out) {
+    const size_t at = out.find("elements     ");
+    return std::stol(out.substr(at + 13));
+  };
+  CHECK(count(adapted.out) > count(plain.out));
+  const size_t f = adapted.out.find("max |F| ");
+  REQUIRE(f != std::string::npos);
+  CHECK(std::stod(adapted.out.substr(f + 8)) < 1e-9);
+  // An unknown variable is an input error naming the model.
+  const Run bad = run(base + " --adapt 1 --adapt-var nosuch -q");
+  CHECK(bad.status == 1);
+  CHECK_THAT(bad.err, Catch::Contains("ball.rf"));
 }
