@@ -134,7 +134,9 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
             << " threads\n";
   std::cout << "  elements     " << m.C.rows() << (tets ? " tetrahedra" : " hexahedra") << " ("
             << info.inner_cells << " inner cells, " << info.layer_elements
-            << " in the boundary layer), " << m.V.rows() << " nodes, " << m.B.rows()
+            << " in the boundary layer"
+            << (info.inner_cells + info.layer_elements != m.C.rows() ? " before refinement" : "")
+            << "), " << m.V.rows() << " nodes, " << m.B.rows()
             << (tets ? " boundary triangles" : " boundary quadrilaterals") << "\n";
   std::cout << "  quality      dihedral angles " << fmt(q.min_dihedral_deg, 3) << " .. "
             << fmt(q.max_dihedral_deg, 4) << " deg (" << q.outside_10_170
@@ -194,7 +196,10 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
       std::cout << " " << p.flagged;
     std::cout << "; new boundary nodes on F = 0";
     for (const RefinementReport& p : passes)
-      std::cout << " " << p.projected;
+      std::cout << " " << p.projected - p.held;
+    std::cout << ", held short of it to keep their elements valid";
+    for (const RefinementReport& p : passes)
+      std::cout << " " << p.held;
     std::cout << ")\n";
   }
   if (q.inverted > 0)

@@ -118,6 +118,47 @@ std::vector<char> refined_nodes(const Eigen::MatrixXi& C, const Eigen::VectorXd&
   return refined;
 }
 
+// Moves the midpoints n0 + project[r] (on their edges, every element positive) to their
+// projections P.row(r) where `moved`, one at a time: the largest fraction 1, 1/2, ..., 1/1024 of
+// the way that keeps every element at the node positive, else none. Elements stay positive
+// after each move (the others' positions are the current ones), so none is inverted at the end;
+// a small element at a curved boundary (a cut grid's sliver) can make the full step fold it.
+// Returns the nodes held short of F = 0.
+long place_projected(const Eigen::MatrixXi& C, long n0, const std::vector<long>& project,
+                     const Eigen::MatrixXd& P, const std::vector<char>& moved, Eigen::MatrixXd& V) {
+  constexpr int kHalvings = 10;
+  std::vector<std::vector<long>> star(project.size());
+  std::vector<long> row(size_t(V.rows() - n0), -1);
+  for (size_t r = 0; r < project.size(); ++r)
+    row[size_t(project[r])] = long(r);
+  for (long e = 0; e < C.rows(); ++e)
+    for (int j = 0; j < 4; ++j)
+      if (C(e, j) >= n0 && row[size_t(C(e, j) - n0)] >= 0)
+        star[size_t(row[size_t(C(e, j) - n0)])].push_back(e);
+  long held = 0;
+  for (size_t r = 0; r < project.size(); ++r) {
+    if (!moved[r])
+      continue;
+    const long n = n0 + project[r];
+    const Eigen::RowVector3d start = V.row(n), step = P.row(long(r)) - start;
+    double s = 1;
+    for (int k = 0; k <= kHalvings; ++k, s *= 0.5) {
+      V.row(n) = start + s * step;
+      bool valid = true;
+      for (long e : star[r])
+        valid = valid && signed_volume6(V, {C(e, 0), C(e, 1), C(e, 2), C(e, 3)}) > 0;
+      if (valid)
+        break;
+    }
+    if (s < 1) {
+      ++held;
+      if (s < std::ldexp(1.0, -kHalvings))
+        V.row(n) = start;
+    }
+  }
+  return held;
+}
+
 } // namespace
 
 Eigen::VectorXd refinement_indicator(const Eigen::MatrixXi& C, const Eigen::VectorXd& values) {
@@ -202,8 +243,8 @@ RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
     }
     std::vector<char> moved;
     project_by_gradient_walk(f, P, h, 100, {}, &moved);
+    rep.held = place_projected(C, n0, project, P, moved, V);
     for (size_t r = 0; r < project.size(); ++r) {
-      V.row(n0 + project[r]) = P.row(long(r));
       boundary[size_t(n0 + project[r])] = moved[r];
       rep.projected += moved[r];
     }
