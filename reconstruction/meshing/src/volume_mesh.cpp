@@ -182,6 +182,30 @@ void untangle_boundary(const ImplicitFunction& f, double h, VolumeMesh& vm,
   }
 }
 
+// Boundary nodes of elements with a corner alpha <= 0 go back to where they were in `before` (a
+// valid mesh), until no element is folded: surface smoothing may slide a node of a cut grid's
+// small element across its opposite face. Returns the nodes put back.
+long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& boundary,
+                    const Eigen::MatrixXi& C, Eigen::MatrixXd& V) {
+  long restored = 0;
+  for (;;) {
+    const Eigen::MatrixXd A = corner_alphas(V, C);
+    long moved = 0;
+    for (long e = 0; e < C.rows(); ++e) {
+      if (A.row(e).minCoeff() > 0)
+        continue;
+      for (long j = 0; j < C.cols(); ++j) {
+        const int v = C(e, j);
+        if (boundary[size_t(v)] && V.row(v) != before.row(v))
+          V.row(v) = before.row(v), ++moved;
+      }
+    }
+    restored += moved;
+    if (moved == 0)
+      return restored;
+  }
+}
+
 // Step (4) of volume_mesh on any mesh whose boundary nodes lie on F = 0: functional (12) over the
 // boundary surface, then (15) over the interior; a projected layer's boundary facets folded by the
 // projection also slide on F = 0 (a cut boundary has none: its nodes stay on their grid edges).
@@ -212,8 +236,11 @@ void smooth_and_untangle(const ImplicitFunction& f, double h, const VolumeMeshOp
     so.iterations = o.surface_sweeps;
     so.threads = o.threads;
     smooth_on_surface(f, Vb, Fb, so);
+    const Eigen::MatrixXd before = vm.V;
     for (size_t r = 0; r < nodes.size(); ++r)
       vm.V.row(nodes[r]) = Vb.row(long(r));
+    if (!projected) // the projected layer's folds are opened below
+      restore_folded(before, vm.boundary, vm.C, vm.V);
   }
   if (o.interior_sweeps > 0) {
     if (projected) {
