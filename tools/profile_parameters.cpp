@@ -45,12 +45,6 @@ double CascadeParameters::*field(const std::string& key) {
   return nullptr;
 }
 
-long line_at(std::string_view text, size_t byte) {
-  return 1 +
-         static_cast<long>(std::count(
-             text.begin(), text.begin() + static_cast<long>(std::min(byte, text.size())), '\n'));
-}
-
 // The parameter file as a JSON value and the line of each value, known for TOML only (a JSON
 // error names the key path, at line 0).
 struct ParamDoc {
@@ -94,6 +88,8 @@ ParamDoc read_json_document(std::string_view content, const std::string& path) {
     const auto col = msg.find("column"), p = msg.find(": ", col == std::string::npos ? 0 : col);
     throw_input_error(path, line_at(content, e.byte > 0 ? e.byte - 1 : 0),
                       "JSON syntax error: " + (p == std::string::npos ? msg : msg.substr(p + 2)));
+  } catch (const json::exception& e) { // a number beyond the double range
+    throw_json_number_error(content, path, e.what());
   }
   return doc;
 }

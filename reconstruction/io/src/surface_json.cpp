@@ -32,13 +32,6 @@ std::string number(double x) {
   return text == "-0" ? "-0.0" : text;
 }
 
-// 1-based line of byte offset `end` in `content`.
-long line_at(std::string_view content, std::size_t end) {
-  end = std::min(end, content.size());
-  return 1 + static_cast<long>(std::count(
-                 content.begin(), content.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
-}
-
 // A JSON string literal; bytes that are not valid UTF-8 become U+FFFD.
 std::string quoted(const std::string& s) {
   return json(s).dump(-1, ' ', false, json::error_handler_t::replace);
@@ -152,18 +145,7 @@ BSplineSurface parse_surface_json(std::string_view content, const std::string& p
                       "JSON syntax error: " +
                           (colon == std::string::npos ? what : what.substr(colon + 2)));
   } catch (const json::exception& e) {
-    // A number beyond the double range ("number overflow parsing '1e999'"): no position is
-    // reported, so locate the quoted token in the text.
-    const std::string what = e.what();
-    const auto b = what.find('\''), q = what.rfind('\'');
-    long line = 0;
-    if (b != std::string::npos && q > b + 1)
-      if (const auto at = content.find(what.substr(b + 1, q - b - 1)); at != std::string::npos)
-        line = line_at(content, at);
-    const auto bracket = what.find("] ");
-    throw_input_error(path, line,
-                      "JSON " + (bracket == std::string::npos ? what : what.substr(bracket + 2)) +
-                          " (not a finite double)");
+    throw_json_number_error(content, path, e.what());
   }
 
   const Reader r{path};
