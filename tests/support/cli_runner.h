@@ -4,6 +4,9 @@
 
 #include "support/test_support.h"
 
+#include <catch2/catch.hpp>
+
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -48,6 +51,14 @@ inline Run run(const std::string& args) {
 inline std::size_t files_in(const TempDir& dir) {
   return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir.path()),
                                                 std::filesystem::directory_iterator()));
+}
+
+// A failed run: exit status `status` and one line on stderr containing `what`.
+inline void expect_error(const Run& r, int status, const std::string& what) {
+  INFO("stderr: " << r.err);
+  CHECK(r.status == status);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_THAT(r.err, Catch::Contains(what));
 }
 
 } // namespace interlin::test

@@ -44,13 +44,6 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-void expect_error(const Run& r, int status, const std::string& what) {
-  INFO("stderr: " << r.err);
-  CHECK(r.status == status);
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  CHECK_THAT(r.err, Catch::Contains(what));
-}
-
 } // namespace
 
 TEST_CASE("CLI implicit: sections -> .ifl exact at the input points, meshed, combined",

@@ -73,13 +73,6 @@ void write_cloud(const std::string& path, const interlin::PointCloud& c) {
   write_file(path, s);
 }
 
-void expect_error(const Run& r, int status, const std::string& what) {
-  INFO("stderr: " << r.err);
-  CHECK(r.status == status);
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  CHECK_THAT(r.err, Catch::Contains(what));
-}
-
 } // namespace
 
 TEST_CASE("CLI implicit: unstructured clouds -> .ifl through the points, signed, meshed",
