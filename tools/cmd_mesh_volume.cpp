@@ -81,38 +81,56 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
   return o;
 }
 
-// --adapt N: N passes of refine_tetrahedra on the nodal quantity (--adapt-var of the model, or
-// F), then the interior smoothed again (the templates' children are valid but uneven). Returns
-// the reports of the passes made.
-std::vector<RefinementReport> adapt(const ParsedArgs& a, const ImplicitFunction& f,
-                                    const VolumeRequest& r, const VolumeMeshOptions& o,
-                                    const Progress& progress, VolumeMesh& m) {
+// --adapt N [--adapt-delta D] [--adapt-var NAME], checked (and the variable loaded) before any
+// meshing, so a usage error costs no mesh.
+struct AdaptRequest {
+  int passes = 0;         // 0: no refinement
+  double delta = 0.2;     // indicator threshold, a fraction of its range
+  ImplicitFunction field; // the nodal quantity: --adapt-var of the model, or F
+};
+
+AdaptRequest adapt_request_of(const ParsedArgs& a, const ImplicitFunction& f,
+                              const VolumeRequest& r, const VolumeMeshOptions& o) {
+  AdaptRequest q{0, 0.2, f};
+  if (!a.has("adapt")) {
+    for (const char* only : {"adapt-delta", "adapt-var"})
+      if (a.has(only))
+        throw UsageError(std::string("--") + only + " needs --adapt N");
+    return q;
+  }
   if (o.elements == VolumeElements::hexahedra)
     throw UsageError("--adapt applies to --volume tet (conforming hexahedral refinement needs "
                      "transition templates)");
-  const int passes = parse_int("adapt", a.get("adapt"), 1, 10);
-  const double delta = parse_double("adapt-delta", a.get("adapt-delta", "0.2"));
-  if (!(delta >= 0 && delta < 1))
+  q.passes = parse_int("adapt", a.get("adapt"), 1, 10);
+  q.delta = parse_double("adapt-delta", a.get("adapt-delta", "0.2"));
+  if (!(q.delta >= 0 && q.delta < 1))
     throw UsageError("--adapt-delta: expected a number in [0, 1), got " + a.get("adapt-delta"));
-  ImplicitFunction field = f;
   if (a.has("adapt-var")) {
     if (lower_extension(r.input) != ".rf")
       throw UsageError("--adapt-var names a variable of an .rf model");
     ModelOptions mo = r.model;
     mo.output = a.get("adapt-var");
-    field = load_implicit(r.input, mo);
+    q.field = load_implicit(r.input, mo);
   }
-  progress("adaptive refinement, " + std::to_string(passes) + " passes (delta " + fmt(delta, 3) +
-           ")");
+  return q;
+}
+
+// q.passes passes of refine_tetrahedra on q.field, then the interior smoothed again (the
+// templates' children are valid but uneven). Returns the reports of the passes made.
+std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunction& f,
+                                    const VolumeMeshOptions& o, const Progress& progress,
+                                    VolumeMesh& m) {
+  progress("adaptive refinement, " + std::to_string(q.passes) + " passes (delta " +
+           fmt(q.delta, 3) + ")");
   const auto values = [&](const Eigen::MatrixXd& V, const Eigen::MatrixXi&) {
     Eigen::VectorXd v(V.rows());
-    field.value(V, v);
+    q.field.value(V, v);
     if (!v.allFinite())
       throw std::runtime_error("--adapt: the nodal quantity is not finite at a node");
     return v;
   };
   const std::vector<RefinementReport> reports =
-      adapt_tetrahedra(m.V, m.C, m.boundary, values, delta, passes, f);
+      adapt_tetrahedra(m.V, m.C, m.boundary, values, q.delta, q.passes, f);
   m.B = boundary_facets(m.C);
   VolumeSmoothingOptions so;
   so.sweeps = o.interior_sweeps;
@@ -167,6 +185,7 @@ std::vector<OptionSpec> volume_options() {
 void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeRequest& r,
                  const Progress& progress, std::vector<std::string>& written) {
   VolumeMeshOptions o = volume_options_of(a, r);
+  const AdaptRequest adapt_request = adapt_request_of(a, f, r, o);
   o.progress = progress;
   VolumeMeshInfo info;
   VolumeMesh m = volume_mesh(f, o, &info);
@@ -175,8 +194,9 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
                       "no volume mesh: no grid cell lies inside the body (refine the grid with "
                       "--resolution or --cell, or check the box)");
   const long before = m.C.rows();
-  const std::vector<RefinementReport> passes =
-      a.has("adapt") ? adapt(a, f, r, o, progress, m) : std::vector<RefinementReport>{};
+  const std::vector<RefinementReport> passes = adapt_request.passes > 0
+                                                   ? adapt(adapt_request, f, o, progress, m)
+                                                   : std::vector<RefinementReport>{};
   if (!passes.empty()) { // the refined boundary's nodes
     Eigen::MatrixXd SV;
     Eigen::MatrixXi SF;

@@ -38,6 +38,7 @@ TEST_CASE("CLI mesh --volume: usage errors", "[cli][mesh][volume]") {
            "mesh " + m + " -o x.msh --volume hex --sweeps -1",               // range
            "mesh " + m + " -o x.msh --volume hex --adapt 1",                 // tetrahedra only
            "mesh " + m + " -o x.msh --volume tet --adapt 1 --adapt-delta 1", // range
+           "mesh " + m + " -o x.msh --volume tet --adapt-delta 0.1",         // needs --adapt
            "mesh " + m + " -o x.stl --adapt 1"}) {                           // needs --volume
     const Run r = run(bad + " -q");
     INFO(bad << " -> " << r.err);
