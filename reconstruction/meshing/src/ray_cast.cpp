@@ -13,22 +13,67 @@ using Eigen::Vector3d;
 
 namespace {
 
-// Moller-Trumbore: the ray parameter t of the hit with triangle (a, b, c), or NaN.
-double hit(const Vector3d& o, const Vector3d& d, const Vector3d& a, const Vector3d& b,
-           const Vector3d& c) {
-  const Vector3d e1 = b - a, e2 = c - a, q = d.cross(e2);
-  const double det = e1.dot(q);
+// A triangle as Moller-Trumbore wants it (corner a, edges e1 = b - a, e2 = c - a) and its
+// bounding box, computed once per mesh rather than once per ray.
+struct Triangle {
+  Vector3d a, e1, e2;
+  double lo[3], hi[3];
+};
+
+std::vector<Triangle> triangles(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  std::vector<Triangle> T(static_cast<size_t>(F.rows()));
+  for (Index f = 0; f < F.rows(); ++f) {
+    Triangle& t = T[static_cast<size_t>(f)];
+    t.a = V.row(F(f, 0)).transpose();
+    t.e1 = V.row(F(f, 1)).transpose() - t.a;
+    t.e2 = V.row(F(f, 2)).transpose() - t.a;
+    double extent = 0;
+    for (int k = 0; k < 3; ++k) {
+      t.lo[k] = std::min({V(F(f, 0), k), V(F(f, 1), k), V(F(f, 2), k)});
+      t.hi[k] = std::max({V(F(f, 0), k), V(F(f, 1), k), V(F(f, 2), k)});
+      extent = std::max(extent, t.hi[k] - t.lo[k]);
+    }
+    // Grown by 1e-9 of its size, so that rounding in the slab test never drops a hit on an edge.
+    for (int k = 0; k < 3; ++k)
+      t.lo[k] -= 1e-9 * extent, t.hi[k] += 1e-9 * extent;
+  }
+  return T;
+}
+
+// Moller-Trumbore: the ray parameter t of the hit with triangle t, or NaN.
+double hit(const Vector3d& o, const Vector3d& d, const Triangle& t) {
+  const Vector3d q = d.cross(t.e2);
+  const double det = t.e1.dot(q);
   if (det == 0)
     return std::numeric_limits<double>::quiet_NaN();
-  const Vector3d s = o - a;
+  const Vector3d s = o - t.a;
   const double u = s.dot(q) / det;
   if (u < 0 || u > 1)
     return std::numeric_limits<double>::quiet_NaN();
-  const Vector3d r = s.cross(e1);
+  const Vector3d r = s.cross(t.e1);
   const double v = d.dot(r) / det;
   if (v < 0 || u + v > 1)
     return std::numeric_limits<double>::quiet_NaN();
-  return e2.dot(r) / det;
+  return t.e2.dot(r) / det;
+}
+
+// Slab test: does the ray o + s d, 0 < s < t_max, meet the triangle's box (closed)?
+bool meets_box(const double o[3], const double d[3], const Triangle& t, double t_max) {
+  double s0 = 0, s1 = t_max;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0) {
+      if (o[k] < t.lo[k] || o[k] > t.hi[k])
+        return false;
+      continue;
+    }
+    double a = (t.lo[k] - o[k]) / d[k], b = (t.hi[k] - o[k]) / d[k];
+    if (a > b)
+      std::swap(a, b);
+    s0 = std::max(s0, a), s1 = std::min(s1, b);
+    if (s0 > s1)
+      return false;
+  }
+  return true;
 }
 
 void check(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& P) {
@@ -58,6 +103,7 @@ std::vector<char> inside_by_ray_parity(const Eigen::MatrixXd& V, const Eigen::Ma
     by = std::clamp(static_cast<int>(std::floor((y - lo(1)) / sy)), 0, nb - 1);
     bz = std::clamp(static_cast<int>(std::floor((z - lo(2)) / sz)), 0, nb - 1);
   };
+  const std::vector<Triangle> T = triangles(V, F);
   std::vector<std::vector<int>> buckets(static_cast<size_t>(nb) * nb);
   for (Index f = 0; f < F.rows(); ++f) {
     double y0 = INFINITY, y1 = -INFINITY, z0 = INFINITY, z1 = -INFINITY;
@@ -80,11 +126,8 @@ std::vector<char> inside_by_ray_parity(const Eigen::MatrixXd& V, const Eigen::Ma
     int a, b;
     bucket(o(1), o(2), a, b);
     int crossings = 0;
-    for (int f : buckets[static_cast<size_t>(a) * nb + b]) {
-      const double t = hit(o, dir, V.row(F(f, 0)).transpose(), V.row(F(f, 1)).transpose(),
-                           V.row(F(f, 2)).transpose());
-      crossings += t > 0;
-    }
+    for (int f : buckets[static_cast<size_t>(a) * nb + b])
+      crossings += hit(o, dir, T[static_cast<size_t>(f)]) > 0;
     inside[static_cast<size_t>(i)] = crossings % 2;
   }
   return inside;
@@ -95,14 +138,18 @@ Eigen::VectorXd ray_hit_distance(const Eigen::MatrixXd& V, const Eigen::MatrixXi
   check(V, F, O);
   if (D.rows() != O.rows() || D.cols() != 3)
     throw std::invalid_argument("ray_hit_distance: one direction per origin");
+  const std::vector<Triangle> T = triangles(V, F);
   Eigen::VectorXd out = Eigen::VectorXd::Constant(O.rows(), INFINITY);
-  for (Index i = 0; i < O.rows(); ++i)
-    for (Index f = 0; f < F.rows(); ++f) {
-      const double t = hit(O.row(i).transpose(), D.row(i).transpose(), V.row(F(f, 0)).transpose(),
-                           V.row(F(f, 1)).transpose(), V.row(F(f, 2)).transpose());
-      if (t > 0 && t < out(i))
-        out(i) = t;
+  for (Index i = 0; i < O.rows(); ++i) {
+    const Vector3d o = O.row(i).transpose(), d = D.row(i).transpose();
+    for (const Triangle& t : T) {
+      if (!meets_box(o.data(), d.data(), t, out(i))) // only boxes nearer than the best hit
+        continue;
+      const double h = hit(o, d, t);
+      if (h > 0 && h < out(i))
+        out(i) = h;
     }
+  }
   return out;
 }
 

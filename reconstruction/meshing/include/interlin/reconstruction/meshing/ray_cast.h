@@ -18,8 +18,9 @@ std::vector<char> inside_by_ray_parity(const Eigen::MatrixXd& V, const Eigen::Ma
                                        const Eigen::MatrixXd& P);
 
 // Distance along each ray O_i + t D_i (t > 0, D_i need not be unit: t is in units of |D_i|) to
-// the nearest triangle it hits (Moller-Trumbore), +infinity when it hits none. Brute force:
-// O(#rays x #F).
+// the nearest triangle it hits (Moller-Trumbore), +infinity when it hits none. Every triangle's
+// box is tested (slab test against the best hit so far) before the triangle: O(#rays x #F) box
+// tests, for checks on test-sized meshes.
 Eigen::VectorXd ray_hit_distance(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
                                  const Eigen::MatrixXd& O, const Eigen::MatrixXd& D);
 
