@@ -13,11 +13,13 @@ namespace interlin::test {
 
 enum class Shape { sphere, torus, ellipsoid };
 
-// The truth: `a` scales the body. Ellipsoid semi-axes a * (1, 0.6, 0.15): a thin, wall-like
-// body (the two sides 0.3 a apart in the middle) whose rim is as sharp as a blade's edge.
+// The truth: `a` scales the body. Ellipsoid semi-axes a * (1, 0.6, c), c = 0.15 by default: a
+// thin, wall-like body (the two sides 2 c a apart in the middle) whose rim is as sharp as a
+// blade's edge (radius of curvature c^2 a in the x z plane).
 struct SampledShape {
   Shape shape;
   double a = 1;
+  double c = 0.15; // the ellipsoid's third semi-axis / a
   // Signed distance (sphere, torus) or the algebraic distance's first-order version (ellipsoid:
   // g / |grad g| with g = 1 - sum (x_i / s_i)^2, exact to first order near the surface).
   double distance(const Eigen::Vector3d& p) const {
@@ -27,7 +29,7 @@ struct SampledShape {
     case Shape::torus:
       return 0.3 * a - std::hypot(std::hypot(p(0), p(1)) - a, p(2));
     case Shape::ellipsoid: {
-      const Eigen::Vector3d s = a * Eigen::Vector3d(1, 0.6, 0.15);
+      const Eigen::Vector3d s = a * Eigen::Vector3d(1, 0.6, c);
       const Eigen::Vector3d q = p.cwiseQuotient(s);
       const double g = 1 - q.squaredNorm();
       return g / (2 * q.cwiseQuotient(s).norm());
@@ -45,7 +47,7 @@ struct SampledShape {
       const double z = 2 * t - 1, r = std::sqrt(std::max(0.0, 1 - z * z));
       const Eigen::Vector3d d(r * std::cos(u), r * std::sin(u), z); // uniform on the sphere
       const Eigen::Vector3d sc =
-          shape == Shape::sphere ? Eigen::Vector3d::Ones() : Eigen::Vector3d(1, 0.6, 0.15);
+          shape == Shape::sphere ? Eigen::Vector3d::Ones() : Eigen::Vector3d(1, 0.6, c);
       p = a * d.cwiseProduct(sc);
       n = d.cwiseQuotient(sc).normalized();
       // area element of the affine image relative to the sphere's: |S^-T d| * det S

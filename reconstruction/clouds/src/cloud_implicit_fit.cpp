@@ -4,6 +4,7 @@
 
 #include "local_fit.h"
 #include "nearest_neighbours.h"
+#include "winding_number.h"
 
 #include "interlin/reconstruction/clouds/noise_level.h"
 #include "interlin/reconstruction/meshing/parallel_for.h"
@@ -43,6 +44,8 @@ constexpr int kQuadricPoints = 10; // a sheet with fewer points is a plane
 struct Points {
   const Eigen::MatrixX3d& P;
   const Eigen::MatrixX3d& N;
+  const Eigen::VectorXd& area; // surface area per point (point_areas)
+  const detail::WindingNumber& winding;
 };
 
 Eigen::Matrix3d frame_for(const Vector3d& n) {
@@ -196,35 +199,71 @@ bool fit_cell(const Points& pts, const std::vector<int>& idx, const std::vector<
   return true;
 }
 
+// The plane through the point p0 = P[i0] normal to the direction u from p0 to the cell's centre
+// c: |Q(c)| is the distance to the nearest point, Q keeps one sign over any ball about c that
+// holds no point, and that sign is the side the winding number puts c on (inside: w > 1/2).
+// For a smooth surface u is the normal at the foot p0: the tangent plane there.
+void far_plane(const Points& pts, int i0, LocalFit& f) {
+  const Vector3d p0 = pts.P.row(i0).transpose();
+  const Vector3d u = (f.centre - p0).normalized();
+  const bool inside = pts.winding(f.centre) > 0.5;
+  f.sheets = 1;
+  f.sheet[0].origin = p0;
+  f.sheet[0].frame = frame_for(inside ? Vector3d(-u) : u); // Q = -n . (x - p0), n outward
+  f.sheet[0].c = {};
+}
+
 // A cell with fewer than min_points points in its ball takes its min_points nearest points
-// (weights over a ball reaching past the farthest). Near the surface (its ball holds a point)
-// they are fitted like any cell; far from it, only those facing like the nearest point (not the
-// wall opposite) give a plane: Hoppe's signed distance to the nearest tangent plane, which keeps
-// its sign far away where a quadric would curve back.
+// (weights over a ball reaching past the farthest). Near the surface (its support ball holds a
+// point) they are fitted like any cell, or, when that fails, give the plane of those facing like
+// the nearest point (Hoppe's signed distance to the nearest tangent plane). Far from the surface
+// the tangent plane would extend thin walls past their edges (both sides' planes say "inside"
+// there: the spurious sheets of run 1 in docs/benchmarks.md); a far cell takes instead the plane
+// through the nearest point p0 normal to the direction u from p0 to the cell's centre: |Q| is the
+// distance to the nearest point at the centre and Q keeps one sign over the ball, the sign of the
+// side the winding number puts the centre on (inside when w > 1/2).
 bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k, LocalFit& f) {
   std::vector<int> idx;
   std::vector<double> d2;
   index.knn(f.centre, k, idx, d2);
+  f.sheets = 1;
   if (d2.front() < f.radius * f.radius) { // the support ball holds a point
     const double R = 1.5 * std::sqrt(d2.back());
     if (fit_cell(pts, idx, weights(d2, R), R, f))
       return false;
+    const Vector3d n0 = pts.N.row(idx[0]).transpose();
+    std::vector<int> keep;
+    std::vector<double> kd2;
+    for (size_t j = 0; j < idx.size(); ++j)
+      if (pts.N.row(idx[j]).dot(n0) >= kSheetCos) {
+        keep.push_back(idx[j]);
+        kd2.push_back(d2[j]);
+      }
+    const double Rk = 1.5 * std::sqrt(kd2.back()) + 1e-300;
+    f.sheets = 1;
+    if (fit_sheet(pts, keep, weights(kd2, Rk), Rk, false, f.sheet[0]))
+      return true;
   }
-  const Vector3d n0 = pts.N.row(idx[0]).transpose();
-  std::vector<int> keep;
-  std::vector<double> kd2;
-  for (size_t j = 0; j < idx.size(); ++j)
-    if (pts.N.row(idx[j]).dot(n0) >= kSheetCos) {
-      keep.push_back(idx[j]);
-      kd2.push_back(d2[j]);
-    }
-  const double R = 1.5 * std::sqrt(kd2.back()) + 1e-300;
-  f.sheets = 1;
-  if (!fit_sheet(pts, keep, weights(kd2, R), R, false, f.sheet[0])) {
-    f.sheet[0].origin = pts.P.row(idx[0]).transpose(); // the tangent plane of the nearest point
-    f.sheet[0].frame = frame_for(n0);
-    f.sheet[0].c = {};
-  }
+  far_plane(pts, idx[0], f);
+  return true;
+}
+
+// A leaf whose centre lies at least kSignSpacings point spacings (sqrt of the nearest point's
+// area) from the points, and whose Q there has the sign opposite to the winding number's side,
+// takes the far plane: at that distance the winding number is reliable and the fit has curved
+// back or extends a wall past its edge (a two-sheet slab beyond a blade's trailing edge).
+// Returns true when it did.
+bool check_sign(const Points& pts, const detail::NeighbourIndex& index, LocalFit& f) {
+  constexpr double kSignSpacings = 2;
+  std::vector<int> idx;
+  std::vector<double> d2;
+  index.knn(f.centre, 1, idx, d2);
+  if (d2[0] < kSignSpacings * kSignSpacings * pts.area(idx[0]))
+    return false;
+  const bool inside = pts.winding(f.centre) > 0.5;
+  if ((detail::fit_value(f, f.centre, nullptr) > 0) == inside)
+    return false;
+  far_plane(pts, idx[0], f);
   return true;
 }
 
@@ -278,19 +317,6 @@ std::uint64_t morton(const LocalFit& f, int depth) {
   return key;
 }
 
-// Negates F: each sheet's Q -> -Q, and -(a AND b) = (-a) OR (-b).
-void negate(CloudImplicit& m) {
-  for (LocalFit& f : m.fits) {
-    for (int s = 0; s < f.sheets; ++s) {
-      HeightSheet& h = f.sheet[static_cast<size_t>(s)];
-      h.frame.row(2) *= -1;
-      for (double& c : h.c)
-        c = -c;
-    }
-    f.conjunction = !f.conjunction;
-  }
-}
-
 } // namespace
 
 CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
@@ -305,7 +331,21 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
     throw std::invalid_argument("cloud implicit: need at least " + std::to_string(o.min_points) +
                                 " points");
   CloudFitInfo info;
-  const Points pts{c.points, c.normals};
+  const detail::NeighbourIndex index(c.points);
+  // kAreaNeighbours: the k of point_areas
+  constexpr int kAreaNeighbours = 8;
+  const Eigen::VectorXd area =
+      detail::point_areas(c.points, index.knn_all(kAreaNeighbours, o.threads));
+  // Outward normals make sum a_i n_i . (p_i - centre) = 3 x the volume > 0 (divergence theorem,
+  // for any closed surface and any centre); inward normals are flipped before fitting.
+  const Vector3d centre = c.points.colwise().mean();
+  double flux = 0;
+  for (Index i = 0; i < c.points.rows(); ++i)
+    flux += area(i) * c.normals.row(i).dot(c.points.row(i) - centre.transpose());
+  info.flipped = flux < 0;
+  const Eigen::MatrixX3d N = info.flipped ? Eigen::MatrixX3d(-c.normals) : c.normals;
+  const detail::WindingNumber winding(c.points, N, area);
+  const Points pts{c.points, N, area, winding};
   const Vector3d lo = c.points.colwise().minCoeff(), hi = c.points.colwise().maxCoeff();
   const double diag = (hi - lo).norm();
   CloudImplicit m;
@@ -320,7 +360,6 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   info.noise = o.noise > 0 ? o.noise : estimate_noise(c.points);
   const double sigma = std::max(info.noise, kSigmaFloor * m.size);
 
-  const detail::NeighbourIndex index(c.points);
   std::vector<Cell> cells(1);
   size_t begin = 0;
   for (int level = 0; begin < cells.size(); ++level) {
@@ -346,6 +385,16 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
                  " cells");
     begin = end;
   }
+  std::vector<size_t> leaves;
+  for (size_t i = 0; i < cells.size(); ++i)
+    if (cells[i].child < 0 && !cells[i].far)
+      leaves.push_back(i);
+  std::vector<char> fixed(leaves.size(), 0);
+  detail::parallel_for(static_cast<long>(leaves.size()), detail::resolve_threads(o.threads),
+                       [&](long t, int) {
+                         fixed[size_t(t)] = check_sign(pts, index, cells[leaves[size_t(t)]].fit);
+                       });
+  info.sign_fixed_leaves = std::count(fixed.begin(), fixed.end(), 1);
   for (const Cell& cell : cells)
     if (cell.child < 0) {
       m.fits.push_back(cell.fit);
@@ -358,18 +407,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   info.cells = static_cast<long>(cells.size());
   info.leaves = static_cast<long>(m.fits.size());
 
-  // Outside is negative: decided at the root cube's corners (far from any closed surface).
-  ImplicitFunction F = cloud_implicit_function(std::make_shared<const CloudImplicit>(m));
-  Points3 corners(8, 3);
-  for (int k = 0; k < 8; ++k)
-    corners.row(k) = (m.origin + m.size * Vector3d(k & 1, (k >> 1) & 1, (k >> 2) & 1)).transpose();
-  Eigen::VectorXd fc(8);
-  F.value(corners, fc);
-  if ((fc.array() > 0).count() > 4) {
-    negate(m);
-    info.flipped = true;
-    F = cloud_implicit_function(std::make_shared<const CloudImplicit>(m));
-  }
+  const ImplicitFunction F = cloud_implicit_function(std::make_shared<const CloudImplicit>(m));
   // How far the zero set passes from the points (first-order distance |F| / |grad F|).
   Eigen::VectorXd v(c.points.rows());
   Points3 G(c.points.rows(), 3);

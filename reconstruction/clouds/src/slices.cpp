@@ -1,5 +1,7 @@
 #include "interlin/reconstruction/clouds/slices.h"
 
+#include "nearest_neighbours.h"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -21,49 +23,40 @@ constexpr Index kMinSlicePoints = 8; // fewer cannot be fitted by a closed cubic
 // order_profile: the ends of the chord (this fraction of it) are ordered by angle (noses).
 constexpr double kNoseZone = 0.1;
 
+// Density fallback (noisy slices, where tail gaps inside the slices rival the gaps between
+// them): stations are split at the valleys of their kernel density estimate (Gaussian kernel of
+// the noise's width) whose density is below kValley times the lower of the two peaks beside it.
+// Slices 8 sigma apart have valleys at exp(-(4 sigma)^2 / (2 * 2 sigma^2)) = 2e-2 of their peaks;
+// noise inside one slice has no valley at all at that bandwidth.
+constexpr double kValley = 0.1;
+constexpr int kBinsPerWidth = 4; // histogram bins per kernel width
+
 struct Split {
   double score = 0; // slice spacing / spread (larger: thinner slices; 0: no split)
   SliceFamily family;
 };
 
-// Splits the stations s into slices at the gaps that stand out (see detect_slices).
-Split split_stations(const Eigen::MatrixX3d& P, const SliceFamily& candidate) {
-  const Index n = P.rows();
+// The family whose slices are the stations s (sorted, with point rows) between the cuts
+// (increasing station values), with the checks of detect_slices; score 0 when they fail.
+Split family_from_cuts(const Eigen::MatrixX3d& P, const SliceFamily& candidate,
+                       const std::vector<std::pair<double, Index>>& s,
+                       const std::vector<double>& cuts) {
   Split out;
-  if (n < 3 * kMinSlicePoints)
-    return out;
-  std::vector<std::pair<double, Index>> s(static_cast<size_t>(n));
-  for (Index i = 0; i < n; ++i)
-    s[size_t(i)] = {candidate.station(P.row(i).transpose()), i};
-  std::sort(s.begin(), s.end());
-  std::vector<double> gaps(size_t(n - 1));
-  for (size_t j = 0; j + 1 < s.size(); ++j)
-    gaps[j] = s[j + 1].first - s[j].first;
-  std::vector<double> desc = gaps;
-  std::sort(desc.begin(), desc.end(), std::greater<>());
-  // m largest gaps are boundaries: m + 1 slices, at least 3, each of kMinSlicePoints on average
-  size_t best_m = 0;
-  double best = 0;
-  // gaps below round-off of the stations (exact slices) count as that round-off
-  const double eps = 1e-12 * (s.back().first - s.front().first) + 1e-300;
-  for (size_t m = 2; m < desc.size() && Index(m + 1) * kMinSlicePoints <= n; ++m) {
-    const double r = std::max(desc[m - 1], eps) / std::max(desc[m], eps);
-    if (r > best)
-      best = r, best_m = m;
-  }
-  if (best < kSliceGapRatio)
-    return out;
-  const double cut = desc[best_m - 1];
   SliceFamily f = candidate;
-  std::vector<Index> current{s[0].second};
-  for (size_t j = 0; j < gaps.size(); ++j) {
-    if (gaps[j] >= cut) {
+  std::vector<Index> current;
+  size_t next = 0;
+  for (const auto& [station, row] : s) {
+    if (next < cuts.size() && station >= cuts[next]) {
       f.members.push_back(current);
       current.clear();
+      while (next < cuts.size() && station >= cuts[next])
+        ++next;
     }
-    current.push_back(s[j + 1].second);
+    current.push_back(row);
   }
   f.members.push_back(current);
+  if (f.members.size() < 3)
+    return out;
   double sq = 0, worst_spread = 0;
   for (const auto& m : f.members) {
     if (Index(m.size()) < kMinSlicePoints)
@@ -90,9 +83,144 @@ Split split_stations(const Eigen::MatrixX3d& P, const SliceFamily& candidate) {
     spacing = std::min(spacing, f.stations[k + 1] - f.stations[k]);
   if (worst_spread > 0.25 * spacing)
     return out;
-  f.spread = std::sqrt(sq / double(n));
+  f.spread = std::sqrt(sq / double(s.size()));
   out.score = spacing / std::max(f.spread, 1e-15 * spacing);
   out.family = std::move(f);
+  return out;
+}
+
+// Cuts at the gaps that stand out: the m largest gaps when the m-th is at least kSliceGapRatio
+// times the (m+1)-th, for the m with the largest ratio; none when no m reaches it.
+std::vector<double> gap_cuts(const std::vector<std::pair<double, Index>>& s) {
+  const size_t n = s.size();
+  std::vector<double> gaps(n - 1);
+  for (size_t j = 0; j + 1 < n; ++j)
+    gaps[j] = s[j + 1].first - s[j].first;
+  std::vector<double> desc = gaps;
+  std::sort(desc.begin(), desc.end(), std::greater<>());
+  // m largest gaps are boundaries: m + 1 slices, at least 3, each of kMinSlicePoints on average
+  size_t best_m = 0;
+  double best = 0;
+  // gaps below round-off of the stations (exact slices) count as that round-off
+  const double eps = 1e-12 * (s.back().first - s.front().first) + 1e-300;
+  for (size_t m = 2; m < desc.size() && (m + 1) * size_t(kMinSlicePoints) <= n; ++m) {
+    const double r = std::max(desc[m - 1], eps) / std::max(desc[m], eps);
+    if (r > best)
+      best = r, best_m = m;
+  }
+  std::vector<double> cuts;
+  if (best < kSliceGapRatio)
+    return cuts;
+  for (size_t j = 0; j + 1 < n; ++j)
+    if (gaps[j] >= desc[best_m - 1])
+      cuts.push_back(0.5 * (s[j].first + s[j + 1].first));
+  return cuts;
+}
+
+// Cuts at the deep valleys of the stations' density (kValley), kernel width `width`.
+std::vector<double> density_cuts(const std::vector<std::pair<double, Index>>& s, double width) {
+  std::vector<double> cuts;
+  const double lo = s.front().first, range = s.back().first - lo, bin = width / kBinsPerWidth;
+  if (!(width > 0) || !(range / bin < 1e6)) // degenerate, or too fine to histogram
+    return cuts;
+  const int nb = int(range / bin) + 1 + 2 * 4 * kBinsPerWidth;
+  const int pad = 4 * kBinsPerWidth; // the kernel's reach, 4 widths
+  std::vector<double> h(size_t(nb), 0), d(size_t(nb), 0);
+  for (const auto& [station, row] : s)
+    h[size_t(pad + int((station - lo) / bin))] += 1;
+  for (int i = 0; i < nb; ++i)
+    for (int j = std::max(0, i - pad); j <= std::min(nb - 1, i + pad); ++j)
+      d[size_t(i)] += h[size_t(j)] * std::exp(-0.5 * std::pow(double(i - j) / kBinsPerWidth, 2));
+  std::vector<int> peaks;
+  for (int i = 1; i + 1 < nb; ++i)
+    if (d[size_t(i)] > d[size_t(i - 1)] && d[size_t(i)] >= d[size_t(i + 1)])
+      peaks.push_back(i);
+  auto valley = [&](int a, int b) {
+    return int(std::min_element(d.begin() + a, d.begin() + b + 1) - d.begin());
+  };
+  // merge peaks across shallow valleys (keep the higher) until every valley is deep
+  for (bool merged = true; merged && peaks.size() > 1;) {
+    merged = false;
+    for (size_t k = 0; k + 1 < peaks.size(); ++k) {
+      const double top = std::min(d[size_t(peaks[k])], d[size_t(peaks[k + 1])]);
+      if (d[size_t(valley(peaks[k], peaks[k + 1]))] >= kValley * top) {
+        peaks.erase(peaks.begin() +
+                    long(k + (d[size_t(peaks[k])] < d[size_t(peaks[k + 1])] ? 0 : 1)));
+        merged = true;
+        break;
+      }
+    }
+  }
+  for (size_t k = 0; k + 1 < peaks.size(); ++k)
+    cuts.push_back(lo + (valley(peaks[k], peaks[k + 1]) - pad + 0.5) * bin);
+  // a few stray points beyond a valley are a slice's tail, not a slice: drop the cut next to
+  // a part with fewer than kMinSlicePoints points (the one on the part's emptier side)
+  for (bool dropped = true; dropped && !cuts.empty();) {
+    dropped = false;
+    std::vector<Index> count(cuts.size() + 1, 0);
+    for (const auto& [station, row] : s)
+      ++count[size_t(std::upper_bound(cuts.begin(), cuts.end(), station) - cuts.begin())];
+    for (size_t k = 0; k < count.size() && !dropped; ++k)
+      if (count[k] < kMinSlicePoints) {
+        const size_t c = k == 0             ? 0
+                         : k == cuts.size() ? k - 1
+                                            : (count[k - 1] < count[k + 1] ? k - 1 : k);
+        cuts.erase(cuts.begin() + long(c));
+        dropped = true;
+      }
+  }
+  return cuts;
+}
+
+// The noise of the stations along the candidate's axis: for each of up to kWidthSamples points,
+// the median |s_i - s_j| over its nearest neighbours j (in 3D: the same slice when the slices are
+// farther apart than the points along them), the median of that over the points, divided by
+// 0.6745 sqrt(2) (the median of |s_i - s_j| for two independent normal stations). Neighbours
+// chosen in 3D favour close stations, so this underestimates the noise a little: the kernel is
+// then a little narrow, which deepens the valleys between slices.
+double station_noise(const Eigen::MatrixX3d& P, const SliceFamily& c, const Eigen::MatrixXi& knn) {
+  constexpr Index kWidthSamples = 4000;
+  const Index n = P.rows(), step = std::max<Index>(1, n / kWidthSamples);
+  std::vector<double> med, d(size_t(knn.cols()));
+  for (Index i = 0; i < n; i += step) {
+    const double si = c.station(P.row(i).transpose());
+    for (Index j = 0; j < knn.cols(); ++j)
+      d[size_t(j)] = std::abs(c.station(P.row(knn(i, j)).transpose()) - si);
+    std::nth_element(d.begin(), d.begin() + long(d.size() / 2), d.end());
+    med.push_back(d[d.size() / 2]);
+  }
+  std::nth_element(med.begin(), med.begin() + long(med.size() / 2), med.end());
+  return med[med.size() / 2] / (0.6745 * std::sqrt(2.0));
+}
+
+// Splits the stations into slices (see detect_slices): at the gaps that stand out, else at the
+// valleys of their density with the kernel width `width` (the noise along the axis).
+// The k nearest neighbours of every point, found on first use (only the density fallback needs
+// them).
+struct LazyNeighbours {
+  static constexpr int kNeighbours = 10;
+  const Eigen::MatrixX3d& P;
+  Eigen::MatrixXi knn;
+  const Eigen::MatrixXi& get() {
+    if (knn.size() == 0)
+      knn = detail::NeighbourIndex(P).knn_all(kNeighbours);
+    return knn;
+  }
+};
+
+Split split_stations(const Eigen::MatrixX3d& P, const SliceFamily& candidate,
+                     LazyNeighbours& neighbours) {
+  const Index n = P.rows();
+  if (n < 3 * kMinSlicePoints)
+    return {};
+  std::vector<std::pair<double, Index>> s(static_cast<size_t>(n));
+  for (Index i = 0; i < n; ++i)
+    s[size_t(i)] = {candidate.station(P.row(i).transpose()), i};
+  std::sort(s.begin(), s.end());
+  Split out = family_from_cuts(P, candidate, s, gap_cuts(s));
+  if (out.score == 0)
+    out = family_from_cuts(P, candidate, s,
+                           density_cuts(s, station_noise(P, candidate, neighbours.get())));
   return out;
 }
 
@@ -134,6 +262,7 @@ double SliceFamily::station(const Vector3d& p) const {
 
 SliceFamily detect_slices(const Eigen::MatrixX3d& P, SliceKind kind) {
   Split best;
+  LazyNeighbours neighbours{P, {}};
   for (SliceKind k : {SliceKind::planar, SliceKind::radial}) {
     if (kind != SliceKind::automatic && kind != k)
       continue;
@@ -141,13 +270,16 @@ SliceFamily detect_slices(const Eigen::MatrixX3d& P, SliceKind kind) {
       SliceFamily c;
       c.kind = k;
       c.axis = a;
-      Split s = split_stations(P, c);
+      Split s = split_stations(P, c, neighbours);
       if (s.score > best.score)
         best = std::move(s);
     }
   }
-  if (best.family.kind == SliceKind::planar) // the common normal that fits the slices best
-    best = split_stations(P, refined_normal(P, best.family));
+  if (best.family.kind == SliceKind::planar) { // the common normal that fits the slices best
+    Split refined = split_stations(P, refined_normal(P, best.family), neighbours);
+    if (refined.score > 0)
+      best = std::move(refined);
+  }
   return best.family; // kind none when nothing passed
 }
 

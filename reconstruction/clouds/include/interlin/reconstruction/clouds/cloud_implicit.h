@@ -88,11 +88,12 @@ struct CloudFitInfo {
   double noise = 0;            // sigma used
   bool noise_estimated = true; // ... estimated from the points (else given)
   long cells = 0, leaves = 0, two_sheet_leaves = 0, far_leaves = 0;
-  int depth = 0;             // deepest level reached
-  double rms_distance = 0;   // over the input points: |F| / |grad F| (first-order distance)
-  double max_distance = 0;   // ... its maximum
-  double within_3_sigma = 0; // fraction of points with |F| / |grad F| <= 3 sigma
-  bool flipped = false;      // the normals pointed inward and F was negated
+  long sign_fixed_leaves = 0; // leaves whose fit had the wrong side: given the far plane
+  int depth = 0;              // deepest level reached
+  double rms_distance = 0;    // over the input points: |F| / |grad F| (first-order distance)
+  double max_distance = 0;    // ... its maximum
+  double within_3_sigma = 0;  // fraction of points with |F| / |grad F| <= 3 sigma
+  bool flipped = false;       // the normals pointed inward and were flipped
   double seconds = 0;
 };
 
@@ -105,10 +106,16 @@ struct CloudFitInfo {
 // (it holds fewer than 4 min_points: a ball of half the radius holds about a quarter of a
 // surface's points), or at max_depth. A cell with fewer than min_points points in its fit ball
 // takes its min_points nearest points: fitted like any cell when its support ball holds one of
-// them, else a plane through those facing like the nearest (Hoppe's signed distance to the
-// nearest tangent plane, which keeps its sign far away where a quadric would curve back).
-// After fitting, F at the root cube's corners must be negative (outside); when most are positive
-// the normals pointed inward, F is negated and info.flipped is set.
+// them, else (a far cell) the plane through the nearest point normal to the direction from it to
+// the cell's centre, on the side the generalized winding number of the cloud (Barill et al.
+// 2018) puts the centre: Q is about minus the distance to the points outside, plus the distance
+// inside, and never changes sign within the ball (the tangent planes of a thin wall's two sides
+// both say "inside" past its edge, which made spurious sheets). After fitting, every leaf whose
+// centre is at least 2 point spacings from the points and whose Q there contradicts the winding
+// number takes that plane too (info.sign_fixed_leaves).
+// Before fitting, the normals' orientation is checked by the divergence theorem (sum of
+// a_i n_i . (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per point):
+// inward normals are flipped and info.flipped is set.
 // Throws std::invalid_argument for a cloud without normals, fewer than min_points points or bad
 // options.
 CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& options = {},
