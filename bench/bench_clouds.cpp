@@ -9,7 +9,9 @@
 // time of the reconstruction (fit + mesh; Poisson's own call, which includes its mesh).
 //
 // Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R] [--depths D,D]
-//                     [--threads T] [--methods interlin,pcl,open3d|all]
+//                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
+// (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
+// inspection.)
 // (--methods: which of interlin (unstructured and, for slices, sectioned), PCL and Open3D run;
 // the summary's ratios need at least one Poisson.)
 
@@ -29,6 +31,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -209,6 +212,18 @@ void holdout(const Method& m, const CloudCase& c, int threads, Result& out) {
   out.holdout_max = mx / diag;
 }
 
+// --save passes its directory to the workers in this environment variable.
+constexpr const char* kSaveVariable = "BENCH_CLOUDS_SAVE";
+
+void save_obj(const std::string& path, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  std::ofstream out(path);
+  out.precision(9);
+  for (Index i = 0; i < V.rows(); ++i)
+    out << "v " << V(i, 0) << ' ' << V(i, 1) << ' ' << V(i, 2) << '\n';
+  for (Index i = 0; i < F.rows(); ++i)
+    out << "f " << F(i, 0) + 1 << ' ' << F(i, 1) + 1 << ' ' << F(i, 2) + 1 << '\n';
+}
+
 // Reconstructs, then (after its memory is read) measures against the truth when the case has
 // one, else by hold-out.
 Result run_child(const Method& m, const CloudCase& c, int threads) {
@@ -219,6 +234,8 @@ Result run_child(const Method& m, const CloudCase& c, int threads) {
     const Reconstruction r = reconstruct(m, c.cloud, threads);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.peak_mb = double(status_kb("VmHWM:") - before) / 1024.0;
+    if (const char* dir = std::getenv(kSaveVariable))
+      save_obj(std::string(dir) + "/" + c.name + "." + m.label() + ".obj", r.V, r.F);
     out.vertices = static_cast<long>(r.V.rows());
     out.leaves = r.info.leaves;
     out.noise = r.info.noise;
@@ -323,6 +340,8 @@ int main(int argc, char** argv) {
       threads = std::stoi(v);
     else if (a == "--methods")
       methods_wanted = v;
+    else if (a == "--save")
+      setenv(kSaveVariable, v.c_str(), 1);
     else if (a == "--depths") {
       depths.clear();
       for (const std::string& d : split(v))
@@ -361,6 +380,12 @@ int main(int argc, char** argv) {
               << c.description << "; " << c.cloud.points.rows() << " points given to every method";
     const std::string case_file = "/tmp/bench_clouds_" + std::to_string(getpid()) + ".case";
     save_case(c, case_file);
+    if (const char* dir = std::getenv(kSaveVariable)) {
+      std::ofstream xyzn(std::string(dir) + "/" + c.name + ".xyzn");
+      xyzn.precision(9);
+      for (Index i = 0; i < c.cloud.points.rows(); ++i)
+        xyzn << c.cloud.points.row(i) << ' ' << c.cloud.normals.row(i) << '\n';
+    }
     if (c.truth.F.rows() > 0)
       std::cout << "; truth: " << c.truth.F.rows() << " triangles, diagonal "
                 << num(c.truth.diagonal, 4) << ", its own sag " << num(c.truth.sag, 2);
