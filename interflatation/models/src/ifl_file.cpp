@@ -322,6 +322,12 @@ long IflBlock::integer(const std::string& n, long lo, long hi) const {
   return static_cast<long>(v);
 }
 
+long IflBlock::expect(const std::string& k, long version) const {
+  if (kind != k)
+    fail("expected a " + k + " block");
+  return integer("version", 1, version);
+}
+
 const std::string& IflBlock::text(const std::string& n) const {
   const auto it = texts.find(n);
   if (it == texts.end())

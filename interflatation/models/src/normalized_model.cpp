@@ -161,9 +161,7 @@ IflBlock to_ifl(const NormalizedModel& m) {
 }
 
 NormalizedModel normalized_model_from_ifl(const IflBlock& b) {
-  if (b.kind != "normalized_rf")
-    b.fail("expected a normalized_rf block");
-  b.integer("version", 1, 1);
+  b.expect("normalized_rf", 1);
   NormalizedModel m;
   const IflBand band = band_from_block(b);
   m.box = band.box;

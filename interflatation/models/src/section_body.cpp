@@ -152,9 +152,7 @@ IflBlock to_ifl(const SectionBodyModel& m) {
 }
 
 SectionBodyModel section_body_from_ifl(const IflBlock& b) {
-  if (b.kind != "section_body")
-    b.fail("expected a section_body block");
-  b.integer("version", 1, 1);
+  b.expect("section_body", 1);
   SectionBodyModel m;
   const IflBand band = band_from_block(b);
   m.box = band.box;

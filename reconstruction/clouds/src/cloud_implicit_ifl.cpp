@@ -86,9 +86,7 @@ IflBlock to_ifl(const CloudImplicit& m, double noise) {
 }
 
 CloudImplicit cloud_implicit_from_ifl(const IflBlock& b) {
-  if (b.kind != "cloud_pu")
-    b.fail("expected a cloud_pu block");
-  b.integer("version", 1, 1);
+  b.expect("cloud_pu", 1);
   CloudImplicit m;
   m.box = box_from_block(b, "box");
   const std::vector<double>& o = b.f64("origin", {3});

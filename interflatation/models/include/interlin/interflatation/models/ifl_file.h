@@ -56,6 +56,9 @@ struct IflBlock {
   const IflBlock& block(const std::string& name) const;
   // The number as an integer in [lo, hi] (InputError otherwise).
   long integer(const std::string& name, long lo, long hi) const;
+  // A model block's header: this kind, and a field 'version' from 1 to `version` (the versions
+  // this reader knows); InputError otherwise. Returns the block's version.
+  long expect(const std::string& kind, long version) const;
   // InputError "FILE:LINE: block KIND NAME: message".
   [[noreturn]] void fail(const std::string& message) const;
 
