@@ -90,6 +90,14 @@ NodeGrid grid_from_block(const IflBlock& b) {
   return g;
 }
 
+NodeGrid distance_grid_from_block(const IflBlock& model, const Eigen::AlignedBox3d& box) {
+  NodeGrid g = grid_from_block(model.block("distance"));
+  const Eigen::Vector3d end = g.origin + g.h * (g.n.cast<double>() - 1).matrix();
+  if (!((box.min().array() >= g.origin.array()).all() && (box.max().array() <= end.array()).all()))
+    model.fail("the box must lie within the node grid 'distance'");
+  return g;
+}
+
 void set_box(IflBlock& b, const std::string& name, const Eigen::AlignedBox3d& box) {
   b.set_f64(name, {6},
             {box.min()(0), box.min()(1), box.min()(2), box.max()(0), box.max()(1), box.max()(2)});

@@ -171,7 +171,7 @@ NormalizedModel normalized_model_from_ifl(const IflBlock& b) {
   m.path = b.text("path");
   m.options.output = b.text("output");
   m.options.parameters = std::map<std::string, double>(b.block("parameters").numbers);
-  m.grid = grid_from_block(b.block("distance"));
+  m.grid = distance_grid_from_block(b, m.box);
   return m;
 }
 

@@ -161,7 +161,7 @@ SectionBodyModel section_body_from_ifl(const IflBlock& b) {
   const std::vector<double>& e = b.f64("edge_u", {2, 2});
   m.edge_u = {Eigen::Vector2d(e[0], e[1]), Eigen::Vector2d(e[2], e[3])};
   m.side = surface_from_block(b.block("side"));
-  m.grid = grid_from_block(b.block("distance"));
+  m.grid = distance_grid_from_block(b, m.box);
   m.band_cells = b.i64("band_cells", {-1});
   m.band_start = b.i64("band_start", {static_cast<long>(m.band_cells.size()) + 1});
   const std::vector<std::int64_t>& patch = b.i64("seed_patch", {-1});

@@ -227,7 +227,7 @@ public:
         fail("more values on an element line than its properties");
       ++pos_;
     }
-    ++pos_;
+    pos_ = std::min(pos_ + 1, body_.size()); // past the '\n'; the last line may lack one
     ++line_;
   }
   std::size_t remaining() const { return body_.size() - std::min(pos_, body_.size()); }

@@ -29,6 +29,9 @@ struct NodeGrid {
 // n(2) x n(1) x n(0).
 IflBlock grid_block(const std::string& name, const NodeGrid& g);
 NodeGrid grid_from_block(const IflBlock& b);
+// A model's far field: its block node_grid 'distance', which must hold the model's box (the
+// tricubic is an interpolant over the grid's nodes; far beyond them it overflows).
+NodeGrid distance_grid_from_block(const IflBlock& model, const Eigen::AlignedBox3d& box);
 
 // array NAME f64 6: x0 y0 z0 x1 y1 z1 (non-empty box).
 void set_box(IflBlock& b, const std::string& name, const Eigen::AlignedBox3d& box);
