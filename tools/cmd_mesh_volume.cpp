@@ -165,7 +165,8 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
               << fmt(q.mean_radius_ratio, 3);
   std::cout << ", inverted " << q.inverted << "\n";
   std::cout << "  boundary     " << boundary_nodes << " nodes on F = 0 (max |F| "
-            << fmt(info.max_boundary_f, 3) << ", " << info.unprojected << " not projected)\n";
+            << fmt(info.max_boundary_f, 3) << ", " << info.unprojected << " not projected, "
+            << info.held << " held short of it to keep their elements valid)\n";
   std::cout << "  geometry     volume " << fmt(q.volume, 7) << "\n";
 }
 

@@ -48,6 +48,7 @@ py::dict volume_info_dict(const VolumeMeshInfo& i) {
                      field("inner_cells", &VolumeMeshInfo::inner_cells),
                      field("layer_elements", &VolumeMeshInfo::layer_elements),
                      field("unprojected", &VolumeMeshInfo::unprojected),
+                     field("held", &VolumeMeshInfo::held),
                      field("max_boundary_f", &VolumeMeshInfo::max_boundary_f));
 }
 
@@ -73,11 +74,11 @@ Eigen::Matrix<bool, Eigen::Dynamic, 1> boundary_flags(const std::vector<char>& b
 }
 
 py::dict refinement_dict(const RefinementReport& r) {
-  return fields_dict(r, field("flagged", &RefinementReport::flagged),
-                     field("refined_nodes", &RefinementReport::refined_nodes),
-                     field("split", &RefinementReport::split),
-                     field("new_nodes", &RefinementReport::new_nodes),
-                     field("projected", &RefinementReport::projected));
+  return fields_dict(
+      r, field("flagged", &RefinementReport::flagged),
+      field("refined_nodes", &RefinementReport::refined_nodes),
+      field("split", &RefinementReport::split), field("new_nodes", &RefinementReport::new_nodes),
+      field("projected", &RefinementReport::projected), field("held", &RefinementReport::held));
 }
 
 // Tetrahedra (E, 4) and boundary flags (N,) as the refinement takes them; ValueError otherwise.
@@ -121,7 +122,7 @@ halved iff both ends are refined (templates of 2, 4, 8 children; no hanging node
 on boundary facet edges projected onto F = 0 when the body f (Implicit) is given.
 V (N, 3), C (E, 4) positive tetrahedra, boundary (N,) bool, values (N,) nodal quantity ->
 (V (N', 3), C (E', 4) int32, boundary (N',), (values (N',): midpoints the mean of their edge's
-ends, report dict: flagged, refined_nodes, split, new_nodes, projected)).)");
+ends, report dict: flagged, refined_nodes, split, new_nodes, projected, held (of those, held short of F = 0 so that no element folds))).)");
   m.def(
       "adapt_tetrahedra",
       [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
@@ -155,11 +156,14 @@ void bind_volume_meshes(py::module_& m) {
       "mesh_volume",
       [](const ImplicitFunction& f, const std::string& elements, int resolution, double cell,
          const std::optional<MatrixXd>& box, const std::string& rule, double margin,
-         int surface_sweeps, int interior_sweeps, int threads) {
+         int surface_sweeps, int interior_sweeps, int threads, const std::string& boundary) {
         VolumeMeshOptions o;
         o.elements = choice<VolumeElements>(
             {{"tet", VolumeElements::tetrahedra}, {"hex", VolumeElements::hexahedra}}, elements,
             "elements");
+        o.boundary = choice<VolumeBoundary>(
+            {{"cut", VolumeBoundary::cut}, {"projected", VolumeBoundary::projected}}, boundary,
+            "boundary");
         o.rule = choice<ZeroRule>(
             {{"strict", ZeroRule::strict}, {"inclusive", ZeroRule::inclusive}}, rule, "rule");
         if (box)
@@ -178,12 +182,15 @@ void bind_volume_meshes(py::module_& m) {
       py::arg("f"), py::arg("elements") = "tet", py::arg("resolution") = 64, py::arg("cell") = 0.0,
       py::arg("box") = py::none(), py::arg("rule") = "strict", py::arg("margin") = 0.35,
       py::arg("surface_sweeps") = 0, py::arg("interior_sweeps") = 8, py::arg("threads") = 0,
+      py::arg("boundary") = "cut",
       R"(Finite-element mesh of the solid {F > 0} by seed 003's solid-element method (interlin mesh
 --volume): background cells inside, a boundary layer projected onto F = 0, smoothing ->
 (V (N, 3), C (E, 4) tetrahedra or (E, 8) hexahedra (VTK order) int32, B (K, 3 or 4) boundary
-facets, boundary (N,) bool, info dict). elements "tet" or "hex"; rule "strict" (F > eps) or
-"inclusive" (F >= -eps) for the inside nodes; margin: inside nodes within margin x cell of F = 0
-count as outside (no thin layer elements).)");
+facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetrahedra) "cut" (the
+grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer, as hexahedra always);
+rule "strict" (F > eps) or "inclusive" (F >= -eps) for the inside nodes; margin: inside nodes
+within margin x cell of F = 0 count as outside (no thin layer elements). info["held"]: layer
+nodes held short of F = 0 so that no element folds (max_boundary_f is over the others).)");
   m.def(
       "volume_quality",
       [](const MatrixXd& V, const MatrixXi& C, int threads) {

@@ -77,6 +77,7 @@ def test_adaptive_refinement_is_conforming_and_follows_the_field():
     # The adaptive loop with the body: midpoints of boundary edges land on the sphere.
     V2, C2, b2, passes = interlin.adapt_tetrahedra(V, C, boundary, front, 0.3, 2, ball)
     assert len(passes) == 2 and passes[1]["split"] > 0 and sum(p["projected"] for p in passes) > 0
+    assert all(0 <= p["held"] <= p["projected"] for p in passes)
     assert np.max(np.abs(np.linalg.norm(V2[b2], axis=1) - 1)) < 1e-9
     assert interlin.volume_quality(V2, C2, threads=1)["inverted"] == 0
     assert np.all(b2[faces_once(C2)])
@@ -97,3 +98,27 @@ def test_adaptive_refinement_is_conforming_and_follows_the_field():
         raise KeyError("from the field")
     with pytest.raises(KeyError, match="from the field"):  # the field's own error, unchanged
         interlin.adapt_tetrahedra(V, C, boundary, failing, 0.3, 1)
+
+
+def test_mesh_volume_boundary_choice_and_held_nodes():
+    ball = rf.compile(rf.sphere(rf.x, rf.y, rf.z, 1.0), [[-1.2] * 3, [1.2] * 3])
+    for boundary in ("cut", "projected"):
+        V, C, B, on, info = interlin.mesh_volume(ball, "tet", resolution=12, threads=1,
+                                                 boundary=boundary)
+        assert interlin.volume_quality(V, C, threads=1)["inverted"] == 0
+        # a resolved ball: no node held short of F = 0, all on the sphere
+        assert info["held"] == 0
+        assert np.max(np.abs(np.linalg.norm(V[on], axis=1) - 1)) < 1e-9
+    with pytest.raises(ValueError, match="boundary: 'flat' is not one of"):
+        interlin.mesh_volume(ball, "tet", boundary="flat")
+    # A tilted plate 4 cells thick (h = 0.2): the projected hexahedral layer folds unless layer
+    # nodes are held short of F = 0 (measured: 63 of them); those are reported, the others lie on
+    # F = 0.
+    n = np.array([1.0, 2.0, 3.0]) / np.sqrt(14.0)
+    s = n[0] * rf.x + n[1] * rf.y + n[2] * rf.z
+    plate = rf.compile(rf.and0(0.4 ** 2 - s * s, rf.sphere(rf.x, rf.y, rf.z, 1.0)),
+                       [[-1.2] * 3, [1.2] * 3])
+    V, C, B, on, info = interlin.mesh_volume(plate, "hex", cell=0.2, threads=1)
+    assert interlin.volume_quality(V, C, threads=1)["inverted"] == 0
+    assert info["held"] > 0 and info["max_boundary_f"] < 1e-8
+    assert np.count_nonzero(np.abs(plate(V[on])) > 1e-8) <= info["held"]

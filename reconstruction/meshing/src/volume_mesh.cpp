@@ -2,7 +2,6 @@
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 
 #include "interlin/reconstruction/meshing/cut_tetrahedra.h"
-#include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
 
 #include "parallel.h"
@@ -150,42 +149,11 @@ void split_prism(const int b[3], const int t[3], std::array<std::array<int, 4>, 
       out[size_t(k)][size_t(j)] = v[local[k][j]];
 }
 
-// F = 0 as a sliding surface: normals from the gradient (central differences with step 1e-3 h
-// without one), projection by the gradient walk with steps of h / 4.
-SlidingSurface implicit_surface(const ImplicitFunction& f, double h) {
-  SlidingSurface s;
-  s.normals = [f, h](const Eigen::MatrixXd& P) { return outward_directions(f, P, 1e-3 * h); };
-  s.project = [f, h](Eigen::MatrixXd& P) {
-    std::vector<char> ok;
-    project_by_gradient_walk(f, P, Eigen::VectorXd::Constant(P.rows(), h / 4), 100, {}, &ok);
-    return ok;
-  };
-  return s;
-}
-
-// Rounds of boundary sliding and interior sweeps while elements are inverted (at most
-// kUntangleRounds): the boundary facets that projection folded are opened up on the surface.
-void untangle_boundary(const ImplicitFunction& f, double h, VolumeMesh& vm,
-                       const VolumeSmoothingOptions& so, VolumeMeshInfo& out) {
-  constexpr int kUntangleRounds = 4;
-  VolumeSmoothingOptions again = so;
-  again.sweeps = 2;
-  again.t = out.smoothing.t;
-  const SlidingSurface surface = implicit_surface(f, h);
-  for (int r = 0; r < kUntangleRounds; ++r) {
-    if (slide_boundary_nodes(vm.V, vm.C, vm.boundary, surface, out.smoothing.t) == 0)
-      break;
-    const VolumeSmoothingReport rep = smooth_volume(vm.V, vm.C, vm.boundary, again);
-    out.smoothing.energy.push_back(rep.energy.back());
-    out.smoothing.inverted.push_back(rep.inverted.back());
-    out.smoothing.moves += rep.moves;
-  }
-}
-
-// Boundary nodes of elements with a corner alpha <= 0 go back to where they were in `before` (a
-// valid mesh), until no element is folded: surface smoothing may slide a node of a cut grid's
-// small element across its opposite face. Returns the nodes put back.
-long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& boundary,
+// Nodes flagged movable of elements with a corner alpha <= 0 go back to where they were in
+// `before` (a valid mesh), until no element is folded: surface smoothing may slide a node of a cut
+// grid's small element across its opposite face, interior smoothing one beside a held layer
+// element across it. Returns the nodes put back.
+long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& movable,
                     const Eigen::MatrixXi& C, Eigen::MatrixXd& V) {
   long restored = 0;
   for (;;) {
@@ -196,7 +164,7 @@ long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& boun
         continue;
       for (long j = 0; j < C.cols(); ++j) {
         const int v = C(e, j);
-        if (boundary[size_t(v)] && V.row(v) != before.row(v))
+        if (movable[size_t(v)] && V.row(v) != before.row(v))
           V.row(v) = before.row(v), ++moved;
       }
     }
@@ -206,12 +174,148 @@ long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& boun
   }
 }
 
+// A projected boundary layer: its nodes n_inner + r are the copies of the inner nodes below[r];
+// the facets bottom (#P by 3 or 4, inner nodes, outward) and top (their copies).
+struct ProjectedLayer {
+  long n_inner = 0;
+  std::vector<int> below;
+  Eigen::MatrixXi bottom, top;
+};
+
+// A unit direction d with d . n > 0 for every n in N (#N by 3, unit rows) where one is easily
+// found: from their mean, steps towards the worst-served n (a perceptron) until each gets
+// kMinCosine. Returns the best one found.
+Eigen::RowVector3d direction_above(const Eigen::MatrixXd& N) {
+  constexpr int kSteps = 50;
+  constexpr double kMinCosine = 0.1; // about 6 degrees above every face
+  Eigen::RowVector3d d = N.colwise().sum();
+  d = d.norm() > 0 ? Eigen::RowVector3d(d.normalized()) : Eigen::RowVector3d(N.row(0));
+  for (int k = 0; k < kSteps; ++k) {
+    Eigen::Index worst;
+    const double c = (N * d.transpose()).minCoeff(&worst);
+    if (c >= kMinCosine)
+      break;
+    d += (kMinCosine - c) * N.row(worst);
+    d.normalize();
+  }
+  return d;
+}
+
+// The unit corner normals of the bottom facets at their top nodes: bottom (#P by 3 or 4, inner
+// nodes, outward) and top (B, their copies n_inner + r) -> #top lists of (p[j+1] - p[j]) x
+// (p[j-1] - p[j]) at corner j of each bottom facet.
+std::vector<std::vector<Eigen::RowVector3d>> layer_corner_normals(const Eigen::MatrixXi& bottom,
+                                                                  const Eigen::MatrixXi& top,
+                                                                  long n_inner, long n_top,
+                                                                  const Eigen::MatrixXd& V) {
+  std::vector<std::vector<Eigen::RowVector3d>> out(static_cast<size_t>(n_top));
+  const long k = bottom.cols();
+  for (long q = 0; q < bottom.rows(); ++q)
+    for (long j = 0; j < k; ++j) {
+      const Eigen::RowVector3d p = V.row(bottom(q, j));
+      const Eigen::RowVector3d u = V.row(bottom(q, (j + 1) % k)) - p,
+                               v = V.row(bottom(q, (j + k - 1) % k)) - p;
+      const Eigen::RowVector3d n = u.cross(v);
+      if (n.norm() > 0)
+        out[size_t(top(q, j) - n_inner)].push_back(n.normalized());
+    }
+  return out;
+}
+
+// Each round halves, for every node n_inner + r of a folded element, the fraction s[r] of the way
+// from its inner node below[r] (the other end of its layer element's edge) to target[r]; at most
+// kHoldHalvings rounds (a layer element h / 1024 high folds only where its edge directions or its
+// inner face do).
+void halve_while_folded(const Eigen::MatrixXi& C, const std::vector<int>& below, long n_inner,
+                        const Eigen::MatrixXd& target, std::vector<double>& s, Eigen::MatrixXd& V) {
+  constexpr int kHoldHalvings = 10;
+  const long n_top = long(below.size());
+  for (int round = 0; round < kHoldHalvings; ++round) {
+    const Eigen::MatrixXd A = corner_alphas(V, C);
+    std::vector<char> pull(size_t(n_top), 0);
+    bool any = false;
+    for (long e = 0; e < C.rows(); ++e)
+      if (!(A.row(e).minCoeff() > 0))
+        for (long j = 0; j < C.cols(); ++j)
+          if (C(e, j) >= n_inner)
+            pull[size_t(C(e, j) - n_inner)] = 1, any = true;
+    if (!any)
+      return;
+    for (long r = 0; r < n_top; ++r)
+      if (pull[size_t(r)]) {
+        s[size_t(r)] *= 0.5;
+        const Eigen::RowVector3d from = V.row(below[size_t(r)]);
+        V.row(n_inner + r) = from + s[size_t(r)] * (target.row(r) - from);
+      }
+  }
+}
+
+// The projected layer's nodes n_inner + r of folded elements go back towards their inner nodes
+// below[r] (halve_while_folded): where the projection crossed over (walls a few cells thin, parts
+// touching) the layer elements overlap; held short, they do not. Elements still folded then have a
+// top node whose way to F = 0 runs below one of its bottom faces (a smoothed normal at a
+// staircase corner): such nodes get a direction above all their bottom faces (direction_above),
+// the same length (at least h / 2), and are held again. Returns the nodes held short of F = 0
+// (flagged in held).
+long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, double h,
+                       Eigen::MatrixXd& V, std::vector<char>& held) {
+  const std::vector<int>& below = layer.below;
+  const long n_inner = layer.n_inner, n_top = long(below.size());
+  Eigen::MatrixXd target = V.bottomRows(n_top);
+  std::vector<double> s(size_t(n_top), 1);
+  halve_while_folded(C, below, n_inner, target, s, V);
+  const Eigen::MatrixXd A = corner_alphas(V, C);
+  std::vector<char> redo(size_t(n_top), 0);
+  for (long e = 0; e < C.rows(); ++e)
+    if (!(A.row(e).minCoeff() > 0))
+      for (long j = 0; j < C.cols(); ++j)
+        if (C(e, j) >= n_inner)
+          redo[size_t(C(e, j) - n_inner)] = 1;
+  const auto normals = layer_corner_normals(layer.bottom, layer.top, n_inner, n_top, V);
+  for (long r = 0; r < n_top; ++r) {
+    if (!redo[size_t(r)] || normals[size_t(r)].empty())
+      continue;
+    Eigen::MatrixXd N(long(normals[size_t(r)].size()), 3);
+    for (long k = 0; k < N.rows(); ++k)
+      N.row(k) = normals[size_t(r)][size_t(k)];
+    const Eigen::RowVector3d from = V.row(below[size_t(r)]);
+    const double length = std::max((target.row(r) - from).norm(), h / 2);
+    target.row(r) = from + length * direction_above(N);
+    s[size_t(r)] = 1;
+    V.row(n_inner + r) = target.row(r);
+  }
+  halve_while_folded(C, below, n_inner, target, s, V);
+  held.assign(size_t(V.rows()), 0);
+  long count = 0;
+  for (long r = 0; r < n_top; ++r)
+    if (s[size_t(r)] < 1 || redo[size_t(r)])
+      held[size_t(n_inner + r)] = 1, ++count;
+  return count;
+}
+
+// The largest |F| at the boundary nodes not flagged in `skip` (empty: none skipped).
+double max_boundary_value(const ImplicitFunction& f, const VolumeMesh& vm,
+                          const std::vector<char>& skip) {
+  std::vector<long> nodes;
+  for (size_t v = 0; v < vm.boundary.size(); ++v)
+    if (vm.boundary[v] && (skip.empty() || !skip[v]))
+      nodes.push_back(long(v));
+  Points3 P(long(nodes.size()), 3);
+  for (size_t r = 0; r < nodes.size(); ++r)
+    P.row(long(r)) = vm.V.row(nodes[r]);
+  Eigen::VectorXd Fv(P.rows());
+  f.value(P, Fv);
+  return P.rows() > 0 ? Fv.cwiseAbs().maxCoeff() : 0;
+}
+
 // Step (4) of volume_mesh on any mesh whose boundary nodes lie on F = 0: functional (12) over the
-// boundary surface, then (15) over the interior; a projected layer's boundary facets folded by the
-// projection also slide on F = 0 (a cut boundary has none: its nodes stay on their grid edges).
-// Sets the largest |F| at a boundary node.
-void smooth_and_untangle(const ImplicitFunction& f, double h, const VolumeMeshOptions& o,
-                         bool projected, VolumeMesh& vm, VolumeMeshInfo& out) {
+// boundary surface, then (15) over the interior. Before the interior moves, a projected layer's
+// nodes of folded elements are held short of F = 0 (hold_folded_layer), and interior moves that
+// fold an element are undone; a cut boundary has no folds (its nodes stay on their grid edges).
+// Sets held and the largest |F| at a boundary node not held.
+void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOptions& o,
+                     const ProjectedLayer* layer, VolumeMesh& vm, VolumeMeshInfo& out) {
+  const bool projected = layer != nullptr;
   auto say = [&](const std::string& m) {
     if (o.progress)
       o.progress(m);
@@ -239,28 +343,27 @@ void smooth_and_untangle(const ImplicitFunction& f, double h, const VolumeMeshOp
     const Eigen::MatrixXd before = vm.V;
     for (size_t r = 0; r < nodes.size(); ++r)
       vm.V.row(nodes[r]) = Vb.row(long(r));
-    if (!projected) // the projected layer's folds are opened below
+    if (!projected) // the projected layer's folds are held below
       restore_folded(before, vm.boundary, vm.C, vm.V);
   }
+  std::vector<char> held;
+  if (projected) // a valid mesh before the interior moves
+    out.held = hold_folded_layer(vm.C, *layer, h, vm.V, held);
   if (o.interior_sweeps > 0) {
-    if (projected) {
-      say("untangling the boundary surface (functional 13 on F = 0)");
-      untangle_surface(vm.V, vm.B, implicit_surface(f, h));
-    }
     say("smoothing the interior, " + std::to_string(o.interior_sweeps) + " sweeps (functional 15)");
     VolumeSmoothingOptions so;
     so.sweeps = o.interior_sweeps;
     so.threads = o.threads;
+    const Eigen::MatrixXd before = vm.V;
     out.smoothing = smooth_volume(vm.V, vm.C, vm.boundary, so);
-    if (projected)
-      untangle_boundary(f, h, vm, so, out);
+    if (projected) { // moves beside a layer element h / 1024 high may fold it: those go back
+      std::vector<char> interior(vm.boundary.size());
+      std::transform(vm.boundary.begin(), vm.boundary.end(), interior.begin(),
+                     [](char b) { return char(!b); });
+      restore_folded(before, interior, vm.C, vm.V);
+    }
   }
-  Points3 P(long(nodes.size()), 3);
-  for (size_t r = 0; r < nodes.size(); ++r)
-    P.row(long(r)) = vm.V.row(nodes[r]);
-  Eigen::VectorXd Fv(P.rows());
-  f.value(P, Fv);
-  out.max_boundary_f = P.rows() > 0 ? Fv.cwiseAbs().maxCoeff() : 0;
+  out.max_boundary_f = max_boundary_value(f, vm, held);
 }
 
 // The tetrahedral mesh of the background tetrahedra clipped at F = 0 (cut_tetrahedra): nodes on
@@ -354,7 +457,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     say("cutting the grid's tetrahedra at F = 0");
     VolumeMesh vm = cut_mesh(f, g, S, o, out);
     if (vm.C.rows() > 0)
-      smooth_and_untangle(f, g.spacing.minCoeff(), o, false, vm, out);
+      smooth_and_hold(f, g.spacing.minCoeff(), o, nullptr, vm, out);
     return vm;
   }
   BoundaryMeshOptions bo;
@@ -414,6 +517,8 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     for (long j = 0; j < inner.cols(); ++j)
       vm.C(e, j) = index_of(inner(e, j));
   vm.B.resize(facets, m.P.cols());
+  ProjectedLayer layer;
+  layer.bottom.resize(facets, m.P.cols());
   for (long q = 0; q < facets; ++q) {
     const long row = inner.rows() + q * per_facet;
     int b[4], t[4];
@@ -421,6 +526,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
       b[j] = index_of(m.node(m.P(q, j)));
       t[j] = int(n_inner) + m.P(q, j);
       vm.B(q, j) = t[j];
+      layer.bottom(q, j) = b[j];
     }
     if (tets) {
       std::array<std::array<int, 4>, 3> three;
@@ -433,7 +539,12 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     }
   }
 
-  smooth_and_untangle(f, g.spacing.minCoeff(), o, true, vm, out);
+  layer.n_inner = n_inner;
+  layer.top = vm.B;
+  layer.below.resize(size_t(n_top));
+  for (long r = 0; r < n_top; ++r)
+    layer.below[size_t(r)] = index_of(m.node(r));
+  smooth_and_hold(f, g.spacing.minCoeff(), o, &layer, vm, out);
   return vm;
 }
 

@@ -23,8 +23,9 @@ enum class VolumeElements { tetrahedra, hexahedra };
 // How the tetrahedral mesh meets F = 0. cut (default): the grid's tetrahedra clipped at the roots
 // of F on their edges (cut_tetrahedra; no inverted element by construction, thin walls down to a
 // node layer kept). projected: seed 003's layer of prisms between the inner cells' boundary facets
-// and their copies projected onto F = 0 (hexahedra always use it; it inverts elements where a
-// wall is thinner than about 4 cells or parts touch).
+// and their copies projected onto F = 0 (hexahedra always use it; where a wall is thinner than
+// about 4 cells or parts touch it would invert elements: those nodes are held short of F = 0,
+// VolumeMeshInfo::held, and walls without inner cells are lost).
 enum class VolumeBoundary { cut, projected };
 
 struct VolumeMeshOptions {
@@ -67,7 +68,9 @@ struct VolumeMeshInfo {
   long layer_elements = 0;   // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
                              // the pieces of the cut background tetrahedra)
   long unprojected = 0;      // boundary nodes whose projection found no sign change (cut: 0)
-  double max_boundary_f = 0; // largest |F| at a boundary node
+  long held = 0;             // projected layer: boundary nodes held short of F = 0 so that no
+                             // element folds (cut: 0)
+  double max_boundary_f = 0; // largest |F| at a boundary node not held
   VolumeSmoothingReport smoothing;
 };
 
@@ -79,12 +82,13 @@ struct VolumeMeshInfo {
 // copy make one hexahedron, or a prism split into 3 tetrahedra by the minimum-global-index rule
 // (Dompierre et al.; neighbouring prisms agree on their shared quadrilaterals); (4)
 // o.surface_sweeps of functional (12) on the boundary surface (smooth_on_surface; quadrilaterals
-// split along their shorter diagonal), then o.interior_sweeps of (15) with the boundary fixed
-// (smooth_volume). Tetrahedra with o.boundary == cut (the default) replace steps (2)-(3) by
-// cut_tetrahedra (inside nodes by F > epsilon, nodes on internal zero sheets inside; the boundary
-// nodes are roots of F on grid edges, warped grid nodes among them) and keep their boundary fixed
-// in step (4); every smoothing step only accepts node moves that fold no further element corner.
-// The seed's published configurations (margin 0, tetrahedra with the strict rule,
+// split along their shorter diagonal), the nodes of folded layer elements held short of F = 0
+// (towards their inner nodes, or above their bottom facets), then o.interior_sweeps of (15) with
+// the boundary fixed (smooth_volume). Tetrahedra with o.boundary == cut (the default) replace steps
+// (2)-(3) by cut_tetrahedra (inside nodes by F > epsilon, nodes on internal zero sheets inside; the
+// boundary nodes are roots of F on grid edges, warped grid nodes among them) and keep their
+// boundary fixed in step (4); every smoothing step only accepts node moves that fold no further
+// element corner. The seed's published configurations (margin 0, tetrahedra with the strict rule,
 // hexahedra with the inclusive one) give its counts: 2158 boundary nodes and 4332 facets, 3064 and
 // 3072. Inputs:  f (value; gradient when available, else central differences, for the margin),
 //          o (std::invalid_argument for no box, bad resolution/cell, margin outside [0, 1))
