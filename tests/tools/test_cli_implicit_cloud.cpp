@@ -182,7 +182,7 @@ TEST_CASE("CLI implicit: .csv and .txt inputs are sections or clouds by a stated
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("sections     3, loft"));
   write_file(d / "c.csv", cloud);
-  r = run("implicit " + d / "c.csv -o " + d / "c.ifl -q");
+  r = run("implicit " + d / "c.csv -o " + d / "c.ifl --resolution 16 -q");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("input        a point cloud (header x, y, z; no blank lines"));
   // cloud options for sections are wrong usage

@@ -192,6 +192,12 @@ LoftOptions sliced_scan_loft_options() {
   LoftOptions lo;
   lo.align = StartAlign::leading_edge;
   lo.match = Correspondence::arc_length;
+  // Spanwise cubic at the slices' stations (chord spacing for radial slices about an axis other
+  // than z, which have none), without cross-validation: tens of densely fitted sections made the
+  // leave-one-out choice cost minutes, for no measurable accuracy (docs/benchmarks.md, "Sectioned
+  // scans: the spanwise model").
+  lo.span_degree = 3;
+  lo.span_holdout = false;
   return lo;
 }
 

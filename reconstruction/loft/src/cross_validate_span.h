@@ -24,15 +24,18 @@ std::vector<SpanCandidate> span_candidates(const SectionStations& stations, Eige
 // whole stack (without v_j: parameters come from the stack's geometry, so each fold tests the
 // model the loft uses, also for spacings that are not additive like centripetal and uniform),
 // the distance of each point of j to that surface by Newton's method (project_from) from its
-// own parameters (u_i, v_j).
+// own parameters (u_i, v_j) and from samples of the band between j's neighbours (only that band
+// of the fold is converted to explicit form; of a section with more than 256 points every
+// step-th is measured).
 // Inputs: the prepared sections (K >= 3), their section curves, the K-1 distances between
 // neighbouring curves and the stations.
 void cross_validate(const std::vector<PreparedSection>& sections, const SectionCurves& curves,
                     const Eigen::VectorXd& distance, const SectionStations& stations,
                     std::vector<SpanCandidate>& candidates);
 
-// The model of a loft: stations, candidates, their leave-one-out errors (K >= 3) and the choice
-// (the lowest span_model_score; ties to the earlier candidate).
+// The model of a loft: stations, candidates, their leave-one-out errors (K >= 3 and
+// o.span_holdout) and the choice (the lowest span_model_score; ties to the earlier candidate;
+// without errors the first).
 SpanModel choose_span_model(const std::vector<PreparedSection>& sections,
                             const SectionCurves& curves, const LoftOptions& o);
 

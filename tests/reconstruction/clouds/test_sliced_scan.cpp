@@ -3,6 +3,7 @@
 // planar or radial slices with noise, against the exact profiles.
 
 #include "interlin/reconstruction/clouds/fit_sliced_scan.h"
+#include "interlin/reconstruction/loft/closest_point.h"
 
 #include "support/sliced_scans.h"
 
@@ -10,10 +11,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <iostream>
 #include <random>
 
 using namespace interlin;
 using Eigen::Index;
+using Eigen::VectorXd;
 using test::profile;
 using test::scan;
 using test::Scan;
@@ -148,4 +151,69 @@ TEST_CASE("fitted sections follow the exact profiles within 1.5 sigma and the lo
       CHECK(fit.loft.max_deviation <= 1e-9 * fit.loft.bbox_diagonal);
       CHECK(fit.section_gap <= 0.3 * sigma + 1e-3);
     }
+}
+
+// Measurement, not a test (hidden tag; docs/benchmarks.md, "Sectioned scans: the spanwise
+// model"): the loft of the fitted sections with the sectioned scans' fixed spanwise model
+// (station cubic, no cross-validation) against the leave-one-out choice (--span auto), by the
+// distance of the true profiles halfway between the slices to each surface. Slices at even or
+// cosine-clustered stations, 6 or 12 of them, planar or radial, three noise levels.
+TEST_CASE("sectioned scans: the fixed station cubic against the leave-one-out span model",
+          "[.measure][clouds][slices]") {
+  constexpr double kThick = 0.1;
+  constexpr int kPer = 400, kTruth = 256;
+  std::cout << "| slices | spacing | sigma | fixed: max / rms | auto: max / rms | auto model |\n"
+               "|---|---|---|---|---|---|\n";
+  for (bool radial : {false, true})
+    for (int K : {6, 12})
+      for (bool clustered : {false, true})
+        for (double sigma : {0.0, 0.002, 0.008}) {
+          std::vector<double> t(static_cast<size_t>(K));
+          for (int k = 0; k < K; ++k)
+            t[size_t(k)] =
+                clustered ? 0.5 - 0.5 * std::cos(M_PI * k / (K - 1)) : double(k) / (K - 1);
+          const auto place = [&](const Eigen::Vector2d& q, double tk) -> Eigen::Vector3d {
+            const double r = 10 + 3 * tk;
+            return radial ? Eigen::Vector3d(r * std::cos(q(0) / r), r * std::sin(q(0) / r), q(1))
+                          : Eigen::Vector3d(3 * tk, q(0), q(1));
+          };
+          std::mt19937 rng(17 + K);
+          std::uniform_real_distribution<double> U(0, 2 * M_PI);
+          std::normal_distribution<double> G(0, sigma);
+          Eigen::MatrixX3d P(K * kPer, 3);
+          for (int k = 0; k < K; ++k)
+            for (int i = 0; i < kPer; ++i)
+              P.row(k * kPer + i) = (place(profile(U(rng), t[size_t(k)], kThick), t[size_t(k)]) +
+                                     Eigen::Vector3d(G(rng), G(rng), G(rng)))
+                                        .transpose();
+          const SliceFamily f = detect_slices(P, radial ? SliceKind::radial : SliceKind::planar);
+          if (int(f.members.size()) != K) { // close slices within the noise merge
+            std::cout << "| " << K << (radial ? " radial" : " planar") << " | "
+                      << (clustered ? "cosine" : "even") << " | " << sigma << " | "
+                      << f.members.size() << " slices detected | | |\n";
+            continue;
+          }
+          const SlicedFit fit = fit_sliced_scan(P, f);
+          LoftOptions automatic = sliced_scan_loft_options();
+          automatic.span_degree = kAutoSpanDegree;
+          automatic.span_holdout = true;
+          const LoftResult loo = loft_sections(fitted_sections(fit.sections), automatic);
+          Eigen::MatrixXd T((K - 1) * kTruth, 3);
+          for (int k = 0; k + 1 < K; ++k)
+            for (int i = 0; i < kTruth; ++i) {
+              const double tm = 0.5 * (t[size_t(k)] + t[size_t(k) + 1]);
+              T.row(k * kTruth + i) =
+                  place(profile(2 * M_PI * i / kTruth, tm, kThick), tm).transpose();
+            }
+          const auto error = [&](const LoftResult& l) {
+            const VectorXd d = project_to_surface(to_piecewise(l.surface), T).distance;
+            return std::make_pair(d.maxCoeff(), std::sqrt(d.squaredNorm() / double(d.size())));
+          };
+          const auto [fm, fr] = error(fit.loft);
+          const auto [am, ar] = error(loo);
+          std::cout << "| " << K << (radial ? " radial" : " planar") << " | "
+                    << (clustered ? "cosine" : "even") << " | " << sigma << " | " << fm << " / "
+                    << fr << " | " << am << " / " << ar << " | "
+                    << to_string(loo.span.used.parameters) << " " << loo.span.used.degree << " |\n";
+        }
 }

@@ -58,7 +58,8 @@ struct SlicedFit {
 // cubic) with 8, 16, 32, ... up to #points / 4 control points until the rms residual is at most
 // 1.5 sigma (the discrepancy principle: the in-plane residual of isotropic noise is sqrt(2)
 // sigma). The loft
-// aligns the sections at their leading edges (arc-length correspondence).
+// aligns the sections at their leading edges (arc-length correspondence) and is cubic along the
+// span at the slices' stations (sliced_scan_loft_options).
 // Inputs: P #P by 3, a family from detect_slices (kind planar or radial, >= 2 slices).
 // Throws std::invalid_argument for a family of another kind or fewer than 2 slices.
 SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
@@ -66,7 +67,9 @@ SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
 
 // The loft's input: each fitted section's samples (FittedSection::section) as a Section with id
 // "1", "2", ... in station order, and the options fit_sliced_scan lofts them with (sections
-// aligned at their leading edges, arc-length correspondence). Another loft of these (e.g. the
+// aligned at their leading edges, arc-length correspondence; spanwise cubic at the stations, or
+// chord spacing where the loft finds none, without cross-validation: LoftOptions::span_holdout
+// false, so the loft's span.used.loo_* are NaN). Another loft of these (e.g. the
 // implicit body of build_section_body) is the same surface.
 std::vector<Section> fitted_sections(const std::vector<FittedSection>& fitted);
 LoftOptions sliced_scan_loft_options();

@@ -30,6 +30,12 @@ struct LoftOptions {
   // degree; either way reduced to #sections - 1 when needed.
   int span_degree = kAutoSpanDegree;
   SpanParameters span = SpanParameters::automatic;
+  // Cross-validate the spanwise model (#sections - 2 folds per candidate): choose among the
+  // candidates and report the leave-one-out error. false: no folds; the model is the first
+  // candidate in order of preference (span automatic: station when the stack has stations, else
+  // chord; span_degree automatic: the highest, so give a degree), its errors NaN. For callers
+  // that neither report nor need the error and loft many sections (sectioned scans).
+  bool span_holdout = true;
   StartAlign align = StartAlign::first;
   Correspondence match = Correspondence::automatic;
   double section_exponent = 1.0; // section parameters: 1 chord length, 0.5 centripetal

@@ -21,8 +21,9 @@ inline constexpr int kMaxAutoSpanDegree = 9;
 // One model and its leave-one-out error.
 //   parameters  station, chord, centripetal or uniform
 //   degree      the degree on the whole stack (a fold with fewer sections: min(degree, #-1))
-//   loo_max, loo_rms   over every point of every withheld section (NaN for fewer than 3
-//               sections: no interior section to withhold)
+//   loo_max, loo_rms   over the points of every withheld section (at most 256 of each: every
+//               step-th of a denser one; NaN for fewer than 3 sections, no interior section to
+//               withhold, or without cross-validation)
 struct SpanCandidate {
   SpanParameters parameters = SpanParameters::chord;
   int degree = 3;
@@ -32,10 +33,12 @@ struct SpanCandidate {
 
 // The model a loft used.
 //   used        the surface's parameters and degree, with their leave-one-out error
-//   chosen      picked by cross-validation among `candidates` (false: fixed by the options)
+//   chosen      picked by cross-validation among `candidates` (false: fixed by the options, or
+//               the first candidate without cross-validation, LoftOptions::span_holdout)
 //   candidates  every model tried, in order of preference (ties go to the earlier)
 //   stations    the stack's stations (span_parameters.h)
-//   folds       the number of sections withheld in turn (#sections - 2)
+//   folds       the number of sections withheld in turn (#sections - 2; 0 without
+//               cross-validation)
 struct SpanModel {
   SpanCandidate used;
   bool chosen = false;
