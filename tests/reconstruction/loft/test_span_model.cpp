@@ -53,6 +53,17 @@ double affine_residual(const VectorXd& station, const std::vector<double>& s) {
   return (A * c - station).cwiseAbs().maxCoeff();
 }
 
+// The whole fold without section j, as cross_validate builds it (interlineation of the other
+// curves at the model's parameters of the whole stack), in explicit form over the whole span.
+PiecewiseSurface fold_surface(const std::vector<BSplineCurve>& all, const VectorXd& v, size_t j,
+                              int degree) {
+  std::vector<BSplineCurve> curves = all;
+  curves.erase(curves.begin() + static_cast<long>(j));
+  VectorXd vj(v.size() - 1);
+  vj << v.head(static_cast<Index>(j)), v.tail(v.size() - static_cast<Index>(j) - 1);
+  return to_piecewise(interlinate_curves(curves, vj, degree, true));
+}
+
 } // namespace
 
 TEST_CASE("Stations of parallel planes: positions along the common normal, any orientation",
@@ -229,11 +240,7 @@ TEST_CASE("Leave-one-out on dense sections: at most 256 points of each withheld 
       SpanParameters::station, detail::neighbour_distances(c.curves, prepared), m.stations.station);
   double max = 0;
   for (size_t j = 1; j + 1 < s.size(); ++j) {
-    std::vector<BSplineCurve> curves = c.curves;
-    curves.erase(curves.begin() + static_cast<long>(j));
-    VectorXd vj(v.size() - 1);
-    vj << v.head(static_cast<Index>(j)), v.tail(v.size() - static_cast<Index>(j) - 1);
-    const PiecewiseSurface S = to_piecewise(interlinate_curves(curves, vj, 3, true));
+    const PiecewiseSurface S = fold_surface(c.curves, v, j, 3);
     max = std::max(max, project_to_surface(S, prepared[j].points, 512, 128, 8).distance.maxCoeff());
   }
   INFO("subsampled " << m.used.loo_max << ", all points " << max);
@@ -311,11 +318,7 @@ TEST_CASE("Leave-one-out distances: the cross-validation's feet against a dense 
       double max = 0, sum2 = 0;
       long count = 0;
       for (size_t j = 1; j + 1 < all.size(); ++j) {
-        std::vector<BSplineCurve> curves = c.curves;
-        curves.erase(curves.begin() + static_cast<long>(j));
-        VectorXd vj(v.size() - 1);
-        vj << v.head(static_cast<Index>(j)), v.tail(v.size() - static_cast<Index>(j) - 1);
-        const PiecewiseSurface S = to_piecewise(interlinate_curves(curves, vj, cand.degree, true));
+        const PiecewiseSurface S = fold_surface(c.curves, v, j, cand.degree);
         const VectorXd d = project_to_surface(S, prepared[j].points, 1024, 256, 16).distance;
         max = std::max(max, d.maxCoeff());
         sum2 += d.squaredNorm();
