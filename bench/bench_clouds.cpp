@@ -13,7 +13,9 @@
 // (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
 // inspection.)
 // (--methods: which of interlin (unstructured and, for slices, sectioned), PCL and Open3D run;
-// the summary's ratios need at least one Poisson.)
+// the summary's ratios need at least one Poisson; none: only the cases, e.g. to see how many
+// estimated normals point inward. An unknown option, method or case name, or a
+// malformed number, is a usage error: one line on stderr, exit 2.)
 
 #include "cloud_cases.h"
 #include "poisson_baselines.h"
@@ -40,6 +42,7 @@
 #include <numeric>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -320,34 +323,85 @@ std::vector<std::string> split(const std::string& s) {
 
 } // namespace
 
+// The command line, checked: an unknown option, a missing or malformed value, an unknown method
+// or case name is a usage error (one line, exit 2), never a crash or a silently empty run.
+struct Options {
+  std::string cases = "all", methods = "all";
+  int points = 100000, resolution = 256, threads = 2;
+  std::vector<int> depths{8, 9};
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+int positive(const std::string& option, const std::string& v) {
+  std::size_t used = 0;
+  int x = 0;
+  try {
+    x = std::stoi(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != v.size() || x <= 0)
+    throw UsageError(option + " wants a positive integer, not '" + v + "'");
+  return x;
+}
+
+// Each name of the comma-separated list must be one of `known` (or the list is "all").
+void check_names(const std::string& option, const std::string& list,
+                 const std::vector<std::string>& known) {
+  if (list == "all")
+    return;
+  for (const std::string& name : split(list))
+    if (std::find(known.begin(), known.end(), name) == known.end())
+      throw UsageError(option + ": unknown name '" + name + "'");
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; i += 2) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc)
+      throw UsageError(a + " wants a value");
+    const std::string v = argv[i + 1];
+    if (a == "--cases")
+      o.cases = v;
+    else if (a == "--points")
+      o.points = positive(a, v);
+    else if (a == "--resolution")
+      o.resolution = positive(a, v);
+    else if (a == "--threads")
+      o.threads = positive(a, v);
+    else if (a == "--methods")
+      o.methods = v;
+    else if (a == "--save")
+      setenv(kSaveVariable, v.c_str(), 1);
+    else if (a == "--depths") {
+      o.depths.clear();
+      for (const std::string& d : split(v))
+        o.depths.push_back(positive(a, d));
+    } else
+      throw UsageError("unknown option " + a);
+  }
+  check_names("--methods", o.methods, {"interlin", "pcl", "open3d", "none"});
+  return o;
+}
+
 int main(int argc, char** argv) {
   if (argc == 8 && std::string(argv[1]) == "--worker")
     return worker(argv);
   const std::string self = "/proc/self/exe";
-  std::string cases = "all";
-  int points = 100000, resolution = 256, threads = 2;
-  std::vector<int> depths{8, 9};
-  std::string methods_wanted = "all";
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i], v = argv[i + 1];
-    if (a == "--cases")
-      cases = v;
-    else if (a == "--points")
-      points = std::stoi(v);
-    else if (a == "--resolution")
-      resolution = std::stoi(v);
-    else if (a == "--threads")
-      threads = std::stoi(v);
-    else if (a == "--methods")
-      methods_wanted = v;
-    else if (a == "--save")
-      setenv(kSaveVariable, v.c_str(), 1);
-    else if (a == "--depths") {
-      depths.clear();
-      for (const std::string& d : split(v))
-        depths.push_back(std::stoi(d));
-    }
+  Options o;
+  try {
+    o = parse_options(argc, argv);
+  } catch (const UsageError& e) {
+    std::cerr << "bench_clouds: " << e.what() << "\n";
+    return 2;
   }
+  const std::string &cases = o.cases, &methods_wanted = o.methods;
+  const int points = o.points, resolution = o.resolution, threads = o.threads;
+  const std::vector<int>& depths = o.depths;
   const std::vector<std::string> wanted = split(cases);
   auto want = [&](const std::string& key) {
     return cases == "all" || std::find(wanted.begin(), wanted.end(), key) != wanted.end();
@@ -366,6 +420,15 @@ int main(int argc, char** argv) {
       {"valve", [&] { return model_cloud("valve", points, 0, 10); }},
       {"naca0011_plate", [&] { return model_cloud("naca0011_plate", points, 0, 11); }},
       {"valve-noisy", [&] { return model_cloud("valve", points, 0.001, 12); }}};
+  std::vector<std::string> keys;
+  for (const auto& entry : all)
+    keys.push_back(entry.first);
+  try {
+    check_names("--cases", cases, keys);
+  } catch (const UsageError& e) {
+    std::cerr << "bench_clouds: " << e.what() << "\n";
+    return 2;
+  }
 
   std::cout << "# bench_clouds: points " << points << ", interlin resolution " << resolution
             << ", threads " << threads << "\n";
@@ -386,6 +449,10 @@ int main(int argc, char** argv) {
       for (Index i = 0; i < c.cloud.points.rows(); ++i)
         xyzn << c.cloud.points.row(i) << ' ' << c.cloud.normals.row(i) << '\n';
     }
+    if (c.inward >= 0)
+      std::cout << "; " << c.inward << " normals ("
+                << num(100.0 * double(c.inward) / double(c.cloud.points.rows()), 3)
+                << " %) point inward against the true ones";
     if (c.truth.F.rows() > 0)
       std::cout << "; truth: " << c.truth.F.rows() << " triangles, diagonal "
                 << num(c.truth.diagonal, 4) << ", its own sag " << num(c.truth.sag, 2);

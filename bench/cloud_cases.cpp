@@ -123,11 +123,21 @@ void add_noise(PointCloud& c, double sigma, unsigned seed) {
 }
 
 // What an unstructured scan gives every method: points only; normals from prepare_cloud.
-PointCloud prepared(const std::string& name, const PointCloud& scan) {
+// `inward`: how many of those normals point against the scan's true normals (prepare_cloud
+// keeps the points' order, so the kept points are matched as a subsequence).
+PointCloud prepared(const std::string& name, const PointCloud& scan, Index& inward) {
   PointCloud p;
   p.points = scan.points;
   CloudPrepOptions o;
-  return prepare_cloud(name, p, o);
+  p = prepare_cloud(name, p, o);
+  inward = 0;
+  for (Index i = 0, j = 0; i < p.points.rows(); ++i, ++j) {
+    while (j < scan.points.rows() && scan.points.row(j) != p.points.row(i))
+      ++j;
+    if (j < scan.points.rows() && p.normals.row(i).dot(scan.normals.row(j)) < 0)
+      ++inward;
+  }
+  return p;
 }
 
 // The point on the blade's section curve at parameter u where station(S(u, v)) = s (bisection
@@ -191,9 +201,10 @@ CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed) {
         keep.push_back(i);
     PointCloud k;
     k.points = scan.points(keep, Eigen::all);
+    k.normals = scan.normals(keep, Eigen::all);
     scan = k;
   }
-  c.cloud = prepared(c.name, scan);
+  c.cloud = prepared(c.name, scan, c.inward);
   c.truth = b.truth;
   c.noise = sigma;
   return c;
@@ -290,7 +301,7 @@ CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned see
   add_noise(s, c.noise, seed + 3);
   c.description = std::to_string(n) + " points on the zero set of data/models/" + name +
                   ".rf, sigma " + std::to_string(sigma) + " x diagonal";
-  c.cloud = prepared(c.name, s);
+  c.cloud = prepared(c.name, s, c.inward);
   return c;
 }
 

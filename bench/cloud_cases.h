@@ -23,9 +23,10 @@ struct TruthMesh {
 
 struct CloudCase {
   std::string name, description;
-  PointCloud cloud; // points and the normals every method is given
-  TruthMesh truth;  // empty for the bunny
-  double noise = 0; // sigma of the simulated noise (0 for the bunny: unknown)
+  PointCloud cloud;         // points and the normals every method is given
+  TruthMesh truth;          // empty for the bunny
+  double noise = 0;         // sigma of the simulated noise (0 for the bunny: unknown)
+  Eigen::Index inward = -1; // normals pointing against the true ones (-1: unknown; not saved)
   // Sectioned scans: the station coordinate of a point (x for planar slices, the radius about z
   // for radial ones) and the range of the stations; distances are measured where it is inside.
   enum class Station { none, x, radius } stations = Station::none;
