@@ -75,6 +75,8 @@ void cloud_normals(const std::string& path, PointCloud& c, const CloudPrepOption
     OrientationInfo info;
     orient_normals(c.points, c.normals, o.orient_neighbours, &info);
     r.components = info.components;
+    say(o, "orientation check by the winding number");
+    r.patches_flipped = orient_by_winding_number(c.points, c.normals, o.orient_neighbours);
   }
 }
 

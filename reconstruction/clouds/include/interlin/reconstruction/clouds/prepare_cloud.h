@@ -33,6 +33,7 @@ struct CloudPrepReport {
   bool normals_estimated = false, normals_reoriented = false;
   double disagreement = 0;     // orientation_disagreement of the file's normals (automatic)
   Eigen::Index components = 0; // parts of the orientation graph
+  Eigen::Index patches_flipped = 0; // normals negated by orient_by_winding_number
 };
 
 // Inputs: path (named in messages), the cloud as read, options.

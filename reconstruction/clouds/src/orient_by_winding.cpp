@@ -1,0 +1,240 @@
+// Patch signs chosen by the winding number (orient_normals.h, orient_by_winding_number).
+#include "interlin/reconstruction/clouds/orient_normals.h"
+
+#include "nearest_neighbours.h"
+#include "winding_number.h"
+
+#include "interlin/reconstruction/clouds/noise_level.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+namespace interlin {
+
+using Eigen::Index;
+
+namespace {
+
+// Neighbours i, j join one patch when their normals agree within 30 degrees and the edge lies
+// within 30 degrees of both tangent planes (plus 2 noise sigmas): one smooth sheet, oriented one
+// way. Points whose kSmoothNeighbours nearest normals are not all within 30 degrees of their own
+// (up to sign) sit on a sharp rim or a thin wall's edge, where the estimated normal is unreliable:
+// they join no patch and take the sign change of the nearest decided patch.
+const double kPatchCos = std::cos(30.0 * M_PI / 180.0), kPatchSin = 0.5;
+constexpr double kPatchSigmas = 2;
+constexpr int kSmoothNeighbours = 8;
+// Patches end at the faces of a grid of cells kCellsPerDiagonal to the bounding box diagonal: a
+// patch that leaked across a thin wall's noisy edge then spans only the cells by that edge.
+constexpr double kCellsPerDiagonal = 8;
+// The patches decided: the kMaxPatches largest with at least kMinPatchShare of the points.
+constexpr int kMaxPatches = 256;
+constexpr double kMinPatchShare = 0.002;
+// Probes per decided patch (at most), outside each probed point at kProbeSpacings point
+// spacings plus kProbeSigmas noise sigmas along its normal.
+constexpr int kProbesPerPatch = 40;
+constexpr double kProbeSpacings = 2, kProbeSigmas = 3;
+constexpr int kAreaNeighbours = 8;   // point_areas' k
+constexpr Index kCheckProbes = 4000; // outside_winding's probes
+
+int find(std::vector<int>& parent, int i) {
+  while (parent[size_t(i)] != i)
+    i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
+  return i;
+}
+
+// Whether each point's normal agrees (up to sign) with its nearest neighbours' normals.
+std::vector<bool> smooth_points(const Eigen::MatrixX3d& N, const Eigen::MatrixXi& K) {
+  std::vector<bool> smooth(size_t(N.rows()), true);
+  for (Index i = 0; i < N.rows(); ++i)
+    for (Index c = 0; c < std::min<Index>(kSmoothNeighbours, K.cols()); ++c)
+      if (std::abs(N.row(i).dot(N.row(K(i, c)))) < kPatchCos)
+        smooth[size_t(i)] = false;
+  return smooth;
+}
+
+// Patch label of every point (union-find over the neighbour edges that join a patch).
+std::vector<int> patches(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+                         const Eigen::MatrixXi& K, double sigma) {
+  const std::vector<bool> smooth = smooth_points(N, K);
+  const Eigen::RowVector3d lo = P.colwise().minCoeff();
+  const double cell = (P.colwise().maxCoeff() - lo).norm() / kCellsPerDiagonal;
+  auto cell_of = [&](Index i) {
+    const Eigen::Array3i c = ((P.row(i) - lo) / cell).array().floor().cast<int>();
+    return (long(c(2)) * 4096 + c(1)) * 4096 + c(0);
+  };
+  std::vector<int> parent(size_t(P.rows()));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (Index i = 0; i < K.rows(); ++i)
+    for (Index c = 0; c < K.cols(); ++c) {
+      const Index j = K(i, c);
+      const Eigen::RowVector3d e = P.row(j) - P.row(i);
+      const double slack = kPatchSin * e.norm() + kPatchSigmas * sigma;
+      if (!smooth[size_t(i)] || !smooth[size_t(j)] || cell_of(i) != cell_of(j) ||
+          N.row(i).dot(N.row(j)) < kPatchCos || std::abs(N.row(i).dot(e)) > slack ||
+          std::abs(N.row(j).dot(e)) > slack)
+        continue;
+      parent[size_t(find(parent, int(i)))] = find(parent, int(j));
+    }
+  std::vector<int> label(parent.size());
+  for (size_t i = 0; i < parent.size(); ++i)
+    label[i] = find(parent, int(i));
+  return label;
+}
+
+// The roots of the largest patches (at most kMaxPatches, each >= kMinPatchShare of the points).
+std::vector<int> largest_patches(const std::vector<int>& label) {
+  std::vector<Index> size(label.size(), 0);
+  for (int l : label)
+    ++size[size_t(l)];
+  std::vector<int> roots;
+  for (size_t i = 0; i < label.size(); ++i)
+    if (label[i] == int(i) && double(size[i]) >= kMinPatchShare * double(label.size()))
+      roots.push_back(int(i));
+  std::sort(roots.begin(), roots.end(),
+            [&](int a, int b) { return size[size_t(a)] > size[size_t(b)]; });
+  if (roots.size() > size_t(kMaxPatches))
+    roots.resize(size_t(kMaxPatches));
+  return roots;
+}
+
+// The signs s of the decided patches minimising sum over probes of min(|w|, 1) at the outside
+// offset of each probed point (its own patch's sign chooses which offset that is): about 0 for
+// outward normals everywhere. at_plus[r][q], at_minus[r][q]: patch r's winding number at probe
+// q's two offsets. Steepest descent over single flips, the sums at the probes kept up to date.
+std::vector<int> choose_signs(const std::vector<int>& probe_patch,
+                              const std::vector<std::vector<double>>& at_plus,
+                              const std::vector<std::vector<double>>& at_minus) {
+  const size_t R = at_plus.size(), m = probe_patch.size();
+  std::vector<int> s(R, 1);
+  std::vector<double> wp(m, 0), wm(m, 0);
+  for (size_t r = 0; r < R; ++r)
+    for (size_t q = 0; q < m; ++q) {
+      wp[q] += at_plus[r][q];
+      wm[q] += at_minus[r][q];
+    }
+  auto cost = [](int own_sign, double p, double n) {
+    return std::min(std::abs(own_sign > 0 ? p : n), 1.0);
+  };
+  for (size_t steps = 0; steps < 4 * R; ++steps) {
+    double best = 0;
+    size_t best_r = R;
+    for (size_t r = 0; r < R; ++r) {
+      double delta = 0; // energy change if patch r flips
+      for (size_t q = 0; q < m; ++q) {
+        const size_t own = size_t(probe_patch[q]);
+        const int so = own == r ? -s[own] : s[own];
+        delta += cost(so, wp[q] - 2 * s[r] * at_plus[r][q], wm[q] - 2 * s[r] * at_minus[r][q]) -
+                 cost(s[own], wp[q], wm[q]);
+      }
+      if (delta < best - 1e-9) {
+        best = delta;
+        best_r = r;
+      }
+    }
+    if (best_r == R)
+      break;
+    for (size_t q = 0; q < m; ++q) {
+      wp[q] -= 2 * s[best_r] * at_plus[best_r][q];
+      wm[q] -= 2 * s[best_r] * at_minus[best_r][q];
+    }
+    s[best_r] = -s[best_r];
+  }
+  return s;
+}
+
+// Mean of min(|w|, 1) over up to kCheckProbes points p_i + d n_i outside the cloud (every point's
+// own offset as for the patches' probes), w the whole oriented cloud's winding number: the
+// measure by which the repaired orientation must beat the propagated one.
+double outside_winding(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+                       const Eigen::VectorXd& area, double sigma) {
+  const detail::WindingNumber w(P, N, area);
+  const Index step = std::max<Index>(1, P.rows() / kCheckProbes);
+  double e = 0;
+  Index m = 0;
+  for (Index i = 0; i < P.rows(); i += step, ++m) {
+    const double d = kProbeSpacings * std::sqrt(area(i)) + kProbeSigmas * sigma;
+    e += std::min(std::abs(w(P.row(i).transpose() + d * N.row(i).transpose())), 1.0);
+  }
+  return e / double(std::max<Index>(m, 1));
+}
+
+} // namespace
+
+Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k) {
+  const Index n = P.rows();
+  if (n < 2 * kAreaNeighbours)
+    return 0;
+  const Eigen::MatrixX3d N0 = N;
+  const detail::NeighbourIndex index(P);
+  const Eigen::MatrixXi K = index.knn_all(std::max(k, kAreaNeighbours));
+  const Eigen::VectorXd area = detail::point_areas(P, K.leftCols(kAreaNeighbours));
+  const double sigma = n > 24 ? estimate_noise(P) : 0;
+  const std::vector<int> label = patches(P, N, K, sigma);
+  const std::vector<int> roots = largest_patches(label);
+  // patch index of each point: 0..R-1 decided, R the rest (oriented last)
+  const int R = int(roots.size());
+  std::vector<int> which(size_t(n), R);
+  std::vector<std::vector<Index>> rows(size_t(R) + 1);
+  for (Index i = 0; i < n; ++i) {
+    const auto r = std::find(roots.begin(), roots.end(), label[size_t(i)]);
+    which[size_t(i)] = int(r - roots.begin());
+    rows[size_t(which[size_t(i)])].push_back(i);
+  }
+  auto offset = [&](Index i) { return kProbeSpacings * std::sqrt(area(i)) + kProbeSigmas * sigma; };
+  // probes: up to kProbesPerPatch points of each decided patch, offset both ways
+  std::vector<Index> probe_of;
+  std::vector<int> probe_patch;
+  for (int r = 0; r < R; ++r) {
+    const size_t step = std::max<size_t>(1, rows[size_t(r)].size() / kProbesPerPatch);
+    for (size_t t = 0; t < rows[size_t(r)].size(); t += step) {
+      probe_of.push_back(rows[size_t(r)][t]);
+      probe_patch.push_back(r);
+    }
+  }
+  // each decided patch's field at every probe (the winding number is linear in the dipoles)
+  std::vector<std::vector<double>> at_plus(static_cast<size_t>(R)),
+      at_minus(static_cast<size_t>(R));
+  for (int r = 0; r < R; ++r) {
+    const auto& m = rows[size_t(r)];
+    const detail::WindingNumber w(P(m, Eigen::all), N(m, Eigen::all), area(m));
+    for (Index i : probe_of) {
+      at_plus[size_t(r)].push_back(w(P.row(i).transpose() + offset(i) * N.row(i).transpose()));
+      at_minus[size_t(r)].push_back(w(P.row(i).transpose() - offset(i) * N.row(i).transpose()));
+    }
+  }
+  const std::vector<int> s = choose_signs(probe_patch, at_plus, at_minus);
+  // the rest take the sign change of the nearest decided point along the neighbour graph
+  // (breadth first): the propagated orientation was right locally, wrong by whole patches
+  std::vector<int> change(size_t(n), 0);
+  std::vector<Index> queue;
+  for (Index i = 0; i < n; ++i)
+    if (which[size_t(i)] < R) {
+      change[size_t(i)] = s[size_t(which[size_t(i)])];
+      queue.push_back(i);
+    }
+  for (size_t head = 0; head < queue.size(); ++head)
+    for (Index c = 0; c < K.cols(); ++c) {
+      const Index j = K(queue[head], c);
+      if (change[size_t(j)] == 0) {
+        change[size_t(j)] = change[size_t(queue[head])];
+        queue.push_back(j);
+      }
+    }
+  for (Index i = 0; i < n; ++i)
+    if (change[size_t(i)] < 0)
+      N.row(i) *= -1;
+  // the global sign: outward normals enclose a positive volume (divergence theorem)
+  const Eigen::RowVector3d c = P.colwise().mean();
+  const double volume = ((P.rowwise() - c).array() * N.array()).rowwise().sum().matrix().dot(area);
+  if (volume < 0)
+    N *= -1;
+  if (outside_winding(P, N, area, sigma) >= outside_winding(P, N0, area, sigma)) {
+    N = N0; // no better than the propagated orientation by the whole cloud's measure
+    return 0;
+  }
+  return ((N.array() * N0.array()).rowwise().sum() < 0).count();
+}
+
+} // namespace interlin
