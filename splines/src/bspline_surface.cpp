@@ -48,7 +48,7 @@ Index locate(const VectorXd& breaks, bool wrap, double& x) {
   const double a = breaks(0), b = breaks(s);
   if (wrap && (x < a || x >= b))
     x = a + (x - a) - (b - a) * std::floor((x - a) / (b - a));
-  if (x <= a)
+  if (!(x > a)) // NaN too: its span would be past the last one (upper_bound finds no break)
     return 0;
   if (x >= b)
     return s - 1;

@@ -6,6 +6,7 @@
 #include "support/test_surfaces.h"
 
 #include <catch2/catch.hpp>
+#include <limits>
 #include <random>
 
 using namespace interlin;
@@ -46,6 +47,29 @@ TEST_CASE("Surface explicit form equals the Cox–de Boor tensor sum (values and
     const Eigen::Vector4d d = domain(ps);
     CHECK(d(0) == -0.5);
     CHECK(d(3) == 2.0);
+  }
+}
+
+TEST_CASE("A NaN parameter evaluates to NaN inside the coefficient array", "[splines][surface]") {
+  // Fuzz find (a damaged .ifl): v = NaN located one span past the last and read beyond the
+  // coefficients (ASan: heap-buffer-overflow). One span in v makes any such read leave the array.
+  std::mt19937 rng(5);
+  for (const bool closed : {false, true}) {
+    BSplineSurface s;
+    s.degree_u = 3;
+    s.degree_v = 1;
+    s.num_u = 6;
+    s.num_v = 2;
+    s.knots_u = test::random_clamped_knots(rng, 3, s.num_u, 0.0, 1.0);
+    s.knots_v = Eigen::Vector4d(0, 0, 1, 1);
+    s.ctrl = MatrixXd::Random(s.num_u * s.num_v, 3);
+    s.closed_u = closed;
+    const PiecewiseSurface ps = to_piecewise(s);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (const auto& [u, v] : {std::pair{0.5, nan}, std::pair{nan, 0.5}, std::pair{nan, nan}}) {
+      CHECK(!evaluate(ps, u, v).allFinite());
+      CHECK(!evaluate_jet(ps, u, v).S.allFinite());
+    }
   }
 }
 
