@@ -666,7 +666,10 @@ BSplineSurface parse_iges_surface(std::string_view text, const std::string& path
 
   try {
     check_surface(s);
+    to_piecewise(s); // the explicit form every evaluation uses: near-coincident knots fail here
   } catch (const std::invalid_argument& ex) {
+    f.fail(de_line, std::string("invalid surface: ") + ex.what());
+  } catch (const std::runtime_error& ex) { // the explicit basis of near-coincident knots
     f.fail(de_line, std::string("invalid surface: ") + ex.what());
   }
   return s;
