@@ -64,6 +64,19 @@ PiecewiseSurface fold_surface(const std::vector<BSplineCurve>& all, const Vector
   return to_piecewise(interlinate_curves(curves, vj, degree, true));
 }
 
+// Four sections `step` apart, sheared out of their planes by a growing amount: neither planes
+// nor surfaces of revolution, so a stack without stations.
+std::vector<Section> sheared_stack(double step, Index points) {
+  std::vector<Section> fan;
+  for (int k = 0; k < 4; ++k) {
+    Section s = body_section(step * k, points);
+    for (Index i = 0; i < s.points.rows(); ++i)
+      s.points(i, 2) += 0.05 * k * s.points(i, 0);
+    fan.push_back(s);
+  }
+  return fan;
+}
+
 } // namespace
 
 TEST_CASE("Stations of parallel planes: positions along the common normal, any orientation",
@@ -209,14 +222,7 @@ TEST_CASE("Without cross-validation (span_holdout false): the first candidate, n
   CHECK(r.surface.ctrl == f.surface.ctrl);
   CHECK(r.section_v == f.section_v);
   // A stack without stations: chord, the next preference.
-  std::vector<Section> fan;
-  for (int k = 0; k < 4; ++k) {
-    Section s = body_section(0.5 * k, 40);
-    for (Index i = 0; i < s.points.rows(); ++i)
-      s.points(i, 2) += 0.05 * k * s.points(i, 0);
-    fan.push_back(s);
-  }
-  CHECK(loft_sections(fan, o).span.used.parameters == SpanParameters::chord);
+  CHECK(loft_sections(sheared_stack(0.5, 40), o).span.used.parameters == SpanParameters::chord);
 }
 
 TEST_CASE("Leave-one-out on dense sections: at most 256 points of each withheld section",
@@ -278,14 +284,7 @@ TEST_CASE("Few sections: 2 sections have no interior section, 3 have one fold", 
 }
 
 TEST_CASE("span = station needs stations: a warped stack is refused, naming the spread", "[span]") {
-  std::vector<Section> fan;
-  for (int k = 0; k < 4; ++k) {
-    Section s = body_section(0.25 * k, 60);
-    // Sheared out of its plane by a growing amount: neither planes nor surfaces of revolution.
-    for (Index i = 0; i < s.points.rows(); ++i)
-      s.points(i, 2) += 0.05 * k * s.points(i, 0);
-    fan.push_back(s);
-  }
+  const std::vector<Section> fan = sheared_stack(0.25, 60);
   LoftOptions o;
   o.span = SpanParameters::station;
   CHECK_THROWS_WITH(loft_sections(fan, o), Catch::Contains("span parameters 'station' need") &&
