@@ -106,13 +106,16 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
             << (rep.normals_estimated    ? "estimated (PCL) and oriented"
                 : rep.normals_reoriented ? "from the file, re-oriented"
                                          : "from the file")
+            << (rep.patches_flipped > 0
+                    ? "; " + std::to_string(rep.patches_flipped) + " turned by the winding number"
+                    : std::string())
             << "\n";
   std::cout << "  noise        sigma = " << fmt(info.noise, 3)
             << (info.noise_estimated ? " (estimated from the points)" : " (given)") << "\n";
   std::cout << "  octree       " << info.leaves << " leaves (" << info.two_sheet_leaves
-            << " with two sheets, " << info.far_leaves << " far from the points), depth "
-            << info.depth << (info.flipped ? "; the normals pointed inward: F negated" : "")
-            << "\n";
+            << " with two sheets, " << info.far_leaves << " far from the points, "
+            << info.sign_fixed_leaves << " re-signed by the winding number), depth " << info.depth
+            << (info.flipped ? "; the normals pointed inward: F negated" : "") << "\n";
   std::cout << "  fit          |F| / |grad F| at the points: rms " << fmt(info.rms_distance, 3)
             << ", max " << fmt(info.max_distance, 3) << "; " << fmt(100 * info.within_3_sigma, 4)
             << " % within 3 sigma\n";

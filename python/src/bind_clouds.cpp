@@ -175,6 +175,7 @@ py::dict cloud_fit_dict(const CloudFitInfo& i) {
                      field("cells", &CloudFitInfo::cells), field("leaves", &CloudFitInfo::leaves),
                      field("two_sheet_leaves", &CloudFitInfo::two_sheet_leaves),
                      field("far_leaves", &CloudFitInfo::far_leaves),
+                     field("sign_fixed_leaves", &CloudFitInfo::sign_fixed_leaves),
                      field("depth", &CloudFitInfo::depth),
                      field("rms_distance", &CloudFitInfo::rms_distance),
                      field("max_distance", &CloudFitInfo::max_distance),
@@ -189,7 +190,8 @@ py::dict cloud_report_dict(const CloudPrepReport& r) {
       field("normals_estimated", &CloudPrepReport::normals_estimated),
       field("normals_reoriented", &CloudPrepReport::normals_reoriented),
       field("disagreement", &CloudPrepReport::disagreement),
-      field("components", &CloudPrepReport::components));
+      field("components", &CloudPrepReport::components),
+      field("patches_flipped", &CloudPrepReport::patches_flipped));
 }
 
 void bind_clouds(py::module_& m) {

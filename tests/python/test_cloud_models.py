@@ -36,12 +36,12 @@ def scan(tmp_path_factory):
     path = str(d / "sphere.xyzn")
     np.savetxt(path, np.hstack([P, N]), fmt="%.17g")
     ifl = str(d / "sphere.ifl")
-    cli("implicit", path, "-o", ifl, "--slices", "none", "--threads", "1", "-q")
-    return path, ifl, d
+    summary = cli("implicit", path, "-o", ifl, "--slices", "none", "--threads", "1", "-q")
+    return path, ifl, d, summary
 
 
 def test_cli_cloud_ifl_loads_and_evaluates_as_interlin_eval(scan):
-    path, ifl, d = scan
+    path, ifl, d, _ = scan
     assert "cloud_pu" in interlin.ifl_kinds()
     F = interlin.load_model(ifl)
     P = RNG.uniform(-1.3, 1.3, (200, 3))
@@ -54,13 +54,19 @@ def test_cli_cloud_ifl_loads_and_evaluates_as_interlin_eval(scan):
 
 
 def test_implicit_of_a_cloud_file_is_the_clis_model(scan):
-    path, ifl, d = scan
+    path, ifl, d, summary = scan
     M = interlin.implicit(path, slices="none", threads=1)
     assert M.kind == "cloud_pu" and M.grid_shape is None and M.band is None
     # The noise's tail loses a few points to the statistical outlier filter (as in the CLI).
     assert M.report["read"] == 2500 and M.report["kept"] > 2450
     assert not M.report["normals_estimated"]
     assert M.report["within_3_sigma"] > 0.95
+    # The octree counts are the CLI summary's: "N leaves (T with two sheets, F far ..., S re-signed".
+    octree = next(l for l in summary.splitlines() if l.strip().startswith("octree"))
+    counts = [int(w) for w in octree.replace("(", " ").replace(",", " ").split() if w.isdigit()]
+    assert counts[:4] == [M.report[k] for k in
+                          ("leaves", "two_sheet_leaves", "far_leaves", "sign_fixed_leaves")]
+    assert M.report["patches_flipped"] == 0  # the file's normals agree: no re-orientation
     P = RNG.uniform(-1.3, 1.3, (300, 3))
     # The fit is deterministic (threads do not change it): the CLI's model, value for value.
     assert np.array_equal(M(P), interlin.load_model(ifl)(P))
