@@ -255,8 +255,8 @@ void halve_while_folded(const Eigen::MatrixXi& C, const std::vector<int>& below,
 // touching) the layer elements overlap; held short, they do not. Elements still folded then have a
 // top node whose way to F = 0 runs below one of its bottom faces (a smoothed normal at a
 // staircase corner): such nodes get a direction above all their bottom faces (direction_above),
-// the same length (at least h / 2), and are held again. Returns the nodes held short of F = 0
-// (flagged in held).
+// the same length (at least h / 2), and are held again (at most kAimRounds times). Returns the
+// nodes held short of F = 0 (flagged in held).
 long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, double h,
                        Eigen::MatrixXd& V, std::vector<char>& held) {
   const std::vector<int>& below = layer.below;
@@ -264,31 +264,39 @@ long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, do
   Eigen::MatrixXd target = V.bottomRows(n_top);
   std::vector<double> s(size_t(n_top), 1);
   halve_while_folded(C, below, n_inner, target, s, V);
-  const Eigen::MatrixXd A = corner_alphas(V, C);
-  std::vector<char> redo(size_t(n_top), 0);
-  for (long e = 0; e < C.rows(); ++e)
-    if (!(A.row(e).minCoeff() > 0))
-      for (long j = 0; j < C.cols(); ++j)
-        if (C(e, j) >= n_inner)
-          redo[size_t(C(e, j) - n_inner)] = 1;
+  constexpr int kAimRounds = 3; // re-aiming one node can fold an element of a neighbour
   const auto normals = layer_corner_normals(layer.bottom, layer.top, n_inner, n_top, V);
-  for (long r = 0; r < n_top; ++r) {
-    if (!redo[size_t(r)] || normals[size_t(r)].empty())
-      continue;
-    Eigen::MatrixXd N(long(normals[size_t(r)].size()), 3);
-    for (long k = 0; k < N.rows(); ++k)
-      N.row(k) = normals[size_t(r)][size_t(k)];
-    const Eigen::RowVector3d from = V.row(below[size_t(r)]);
-    const double length = std::max((target.row(r) - from).norm(), h / 2);
-    target.row(r) = from + length * direction_above(N);
-    s[size_t(r)] = 1;
-    V.row(n_inner + r) = target.row(r);
+  std::vector<char> aimed(size_t(n_top), 0);
+  for (int round = 0; round < kAimRounds; ++round) {
+    const Eigen::MatrixXd A = corner_alphas(V, C);
+    std::vector<char> redo(size_t(n_top), 0);
+    bool any = false;
+    for (long e = 0; e < C.rows(); ++e)
+      if (!(A.row(e).minCoeff() > 0))
+        for (long j = 0; j < C.cols(); ++j)
+          if (C(e, j) >= n_inner)
+            redo[size_t(C(e, j) - n_inner)] = 1, any = true;
+    if (!any)
+      break;
+    for (long r = 0; r < n_top; ++r) {
+      if (!redo[size_t(r)] || normals[size_t(r)].empty())
+        continue;
+      Eigen::MatrixXd N(long(normals[size_t(r)].size()), 3);
+      for (long k = 0; k < N.rows(); ++k)
+        N.row(k) = normals[size_t(r)][size_t(k)];
+      const Eigen::RowVector3d from = V.row(below[size_t(r)]);
+      const double length = std::max((target.row(r) - from).norm(), h / 2);
+      target.row(r) = from + length * direction_above(N);
+      s[size_t(r)] = 1;
+      aimed[size_t(r)] = 1;
+      V.row(n_inner + r) = target.row(r);
+    }
+    halve_while_folded(C, below, n_inner, target, s, V);
   }
-  halve_while_folded(C, below, n_inner, target, s, V);
   held.assign(size_t(V.rows()), 0);
   long count = 0;
   for (long r = 0; r < n_top; ++r)
-    if (s[size_t(r)] < 1 || redo[size_t(r)])
+    if (s[size_t(r)] < 1 || aimed[size_t(r)])
       held[size_t(n_inner + r)] = 1, ++count;
   return count;
 }
