@@ -168,6 +168,19 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
             << fmt(info.max_boundary_f, 3) << ", " << info.unprojected << " not projected, "
             << info.held << " held short of it to keep their elements valid)\n";
   std::cout << "  geometry     volume " << fmt(q.volume, 7) << "\n";
+  if (info.coverage.body > 0)
+    std::cout << "  coverage     " << fmt(100 * info.lost_fraction(), 3)
+              << " % of the body's volume left out (" << fmt(info.coverage.lost, 4) << " of "
+              << fmt(info.coverage.body, 7) << " on the grid clipped at F = 0)\n";
+}
+
+// The fix for a projected layer that leaves out more than kLostVolumeWarning of the body: a cell
+// at which walls as thick as the lost ones keep inner cells, or the clipped grid.
+std::string lost_volume_fix(const VolumeMeshInfo& info, bool tets) {
+  return "walls about " + fmt(info.coverage.thickness(), 3) +
+         " thick have no inner cell under the boundary layer: use --cell " +
+         fmt(info.suggested_cell, 2) + " or smaller, or " +
+         (tets ? "--boundary cut" : "--volume tet");
 }
 
 } // namespace
@@ -190,10 +203,15 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   o.progress = progress;
   VolumeMeshInfo info;
   VolumeMesh m = volume_mesh(f, o, &info);
+  const bool tets = o.elements == VolumeElements::tetrahedra;
   if (m.C.rows() == 0)
     throw_input_error(r.input, 0,
-                      "no volume mesh: no grid cell lies inside the body (refine the grid with "
-                      "--resolution or --cell, or check the box)");
+                      "no volume mesh: no grid cell lies inside the body (" +
+                          (info.coverage.body > 0
+                               ? lost_volume_fix(info, tets)
+                               : std::string("refine the grid with --resolution or --cell, or "
+                                             "check the box")) +
+                          ")");
   const long before = m.C.rows();
   const std::vector<RefinementReport> passes = adapt_request.passes > 0
                                                    ? adapt(adapt_request, f, o, progress, m)
@@ -210,6 +228,9 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   std::vector<ElementQuality> per;
   const VolumeQuality q = volume_quality(m.V, m.C, r.threads, &per);
   print_summary(r, m, info, q, o);
+  if (!r.quiet && info.lost_fraction() > kLostVolumeWarning)
+    std::cerr << "warning: the mesh leaves out " << fmt(100 * info.lost_fraction(), 2)
+              << " % of the body's volume (" << lost_volume_fix(info, tets) << ")\n";
   if (a.has("adapt")) {
     std::cout << "  adapted      " << passes.size() << " passes, " << before << " -> " << m.C.rows()
               << " tetrahedra (flagged";

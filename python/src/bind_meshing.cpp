@@ -42,14 +42,33 @@ py::dict report_dict(const MeshReport& r) {
 }
 
 py::dict volume_info_dict(const VolumeMeshInfo& i) {
-  return fields_dict(i, field("inside_nodes", &VolumeMeshInfo::inside_nodes),
-                     field("dropped_nodes", &VolumeMeshInfo::dropped_nodes),
-                     field("removed_cells", &VolumeMeshInfo::removed_cells),
-                     field("inner_cells", &VolumeMeshInfo::inner_cells),
-                     field("layer_elements", &VolumeMeshInfo::layer_elements),
-                     field("unprojected", &VolumeMeshInfo::unprojected),
-                     field("held", &VolumeMeshInfo::held),
-                     field("max_boundary_f", &VolumeMeshInfo::max_boundary_f));
+  py::dict d = fields_dict(i, field("inside_nodes", &VolumeMeshInfo::inside_nodes),
+                           field("dropped_nodes", &VolumeMeshInfo::dropped_nodes),
+                           field("removed_cells", &VolumeMeshInfo::removed_cells),
+                           field("inner_cells", &VolumeMeshInfo::inner_cells),
+                           field("layer_elements", &VolumeMeshInfo::layer_elements),
+                           field("unprojected", &VolumeMeshInfo::unprojected),
+                           field("held", &VolumeMeshInfo::held),
+                           field("max_boundary_f", &VolumeMeshInfo::max_boundary_f),
+                           field("suggested_cell", &VolumeMeshInfo::suggested_cell));
+  d["body_volume"] = i.coverage.body;
+  d["lost_volume"] = i.coverage.lost;
+  d["lost_thickness"] = i.coverage.thickness();
+  return d;
+}
+
+// A UserWarning when the projected layer leaves out more than kLostVolumeWarning of the body.
+void warn_lost_volume(const VolumeMeshInfo& i, bool tets) {
+  if (!(i.lost_fraction() > kLostVolumeWarning))
+    return;
+  const std::string m =
+      "mesh_volume: the mesh leaves out " + std::to_string(100 * i.lost_fraction()) +
+      " % of the body's volume (walls about " + std::to_string(i.coverage.thickness()) +
+      " thick have no inner cell under the boundary layer): use cell=" +
+      std::to_string(i.suggested_cell) + " or smaller, or " +
+      (tets ? "boundary='cut'" : "elements='tet'");
+  if (PyErr_WarnEx(PyExc_UserWarning, m.c_str(), 1) != 0)
+    throw py::error_already_set();
 }
 
 py::dict quality_dict(const VolumeQuality& q) {
@@ -176,6 +195,7 @@ void bind_volume_meshes(py::module_& m) {
           py::gil_scoped_release release;
           v = volume_mesh(f, o, &info);
         }
+        warn_lost_volume(info, o.elements == VolumeElements::tetrahedra);
         return py::make_tuple(std::move(v.V), std::move(v.C), std::move(v.B),
                               boundary_flags(v.boundary), volume_info_dict(info));
       },
@@ -190,7 +210,10 @@ facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetra
 grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer, as hexahedra always);
 rule "strict" (F > eps) or "inclusive" (F >= -eps) for the inside nodes; margin: inside nodes
 within margin x cell of F = 0 count as outside (no thin layer elements). info["held"]: layer
-nodes held short of F = 0 so that no element folds (max_boundary_f is over the others).)");
+nodes held short of F = 0 so that no element folds (max_boundary_f is over the others);
+projected layer: body_volume (the grid clipped at F = 0), lost_volume (its part no element
+covers: walls with no inner cell under the layer), lost_thickness (their mean thickness) and
+suggested_cell (the cell that keeps such walls), with a UserWarning above 0.5 % lost.)");
   m.def(
       "volume_quality",
       [](const MatrixXd& V, const MatrixXi& C, int threads) {

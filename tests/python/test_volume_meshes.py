@@ -118,7 +118,27 @@ def test_mesh_volume_boundary_choice_and_held_nodes():
     s = n[0] * rf.x + n[1] * rf.y + n[2] * rf.z
     plate = rf.compile(rf.and0(0.4 ** 2 - s * s, rf.sphere(rf.x, rf.y, rf.z, 1.0)),
                        [[-1.2] * 3, [1.2] * 3])
-    V, C, B, on, info = interlin.mesh_volume(plate, "hex", cell=0.2, threads=1)
+    with pytest.warns(UserWarning, match="leaves out"):  # a skew plate 4 cells thin
+        V, C, B, on, info = interlin.mesh_volume(plate, "hex", cell=0.2, threads=1)
     assert interlin.volume_quality(V, C, threads=1)["inverted"] == 0
     assert info["held"] > 0 and info["max_boundary_f"] < 1e-8
     assert np.count_nonzero(np.abs(plate(V[on])) > 1e-8) <= info["held"]
+
+
+def test_mesh_volume_reports_the_volume_the_layer_loses():
+    # A spherical shell 0.1 thick: at cell 0.05 no cell lies inside the wall, so the projected
+    # layer loses most of it (measured 96 %); the report says so, measures the wall (0.096) and
+    # suggests a cell (thickness / 6) at which nothing is lost. The clipped grid loses nothing.
+    r = rf.sqrt(rf.x * rf.x + rf.y * rf.y + rf.z * rf.z) - 0.25
+    shell = rf.compile(0.05 ** 2 - r * r, [[-0.32] * 3, [0.32] * 3])
+    with pytest.warns(UserWarning, match=r"leaves out .* use cell=0\.01.* or elements='tet'"):
+        V, C, B, on, info = interlin.mesh_volume(shell, "hex", cell=0.05, threads=1)
+    assert info["lost_volume"] > 0.5 * info["body_volume"]
+    assert info["lost_thickness"] == pytest.approx(0.1, rel=0.05)
+    assert info["suggested_cell"] == pytest.approx(info["lost_thickness"] / 6)
+    V, C, B, on, info = interlin.mesh_volume(shell, "hex", cell=info["suggested_cell"], threads=1)
+    assert info["lost_volume"] < 0.005 * info["body_volume"]
+    assert interlin.volume_quality(V, C, threads=1)["volume"] == pytest.approx(
+        info["body_volume"], rel=0.002)
+    V, C, B, on, info = interlin.mesh_volume(shell, "tet", cell=0.05, threads=1)
+    assert info["body_volume"] == 0 and info["lost_volume"] == 0  # cut: not measured

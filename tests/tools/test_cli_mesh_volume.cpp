@@ -129,3 +129,33 @@ TEST_CASE("CLI mesh --volume tet --adapt: refinement where the model's field var
   CHECK(bad.status == 1);
   CHECK_THAT(bad.err, Catch::Contains("ball.rf"));
 }
+
+TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
+          "[cli][mesh][volume]") {
+  // A spherical shell 0.1 thick: at cell 0.05 the hexahedral layer has almost no cell to stand on
+  // (measured: 95.8 % of the volume lost): a coverage line, and one warning naming the fix; -q
+  // keeps the summary but not the warning. At cell 0.1 no cell is inside: the error names it.
+  TempDir d("climeshvol");
+  write_file(d / "shell.rf", "box(-0.32, -0.32, -0.32, 0.32, 0.32, 0.32);\n"
+                             "r = sqrt(x^2 + y^2 + z^2) - 0.25;\nres = 0.0025 - r^2;\n");
+  const std::string mesh = "mesh " + (d / "shell.rf") + " -o " + (d / "s.vtu") + " --volume ";
+  const Run r = run(mesh + "hex --cell 0.05");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("coverage     95.8 % of the body's volume left out"));
+  CHECK_THAT(r.err, Catch::Contains("\nwarning: the mesh leaves out 96 % of the body's volume "
+                                    "(walls about 0.0962 thick have no inner cell under the "
+                                    "boundary layer: use --cell 0.016 or smaller, or --volume "
+                                    "tet)\n"));
+  const Run quiet = run(mesh + "hex --cell 0.05 -q");
+  CHECK(quiet.err.empty());
+  CHECK_THAT(quiet.out, Catch::Contains("coverage"));
+  const Run none = run(mesh + "hex --cell 0.1 -q");
+  CHECK(none.status == 1);
+  CHECK_THAT(none.err, Catch::Contains("no grid cell lies inside the body (walls about") &&
+                           Catch::Contains("or --volume tet)"));
+  // The clipped grid (default tetrahedra) loses nothing: no coverage line.
+  const Run cut = run(mesh + "tet --cell 0.05 -q");
+  CHECK(cut.status == 0);
+  CHECK_THAT(cut.out, !Catch::Contains("coverage"));
+}

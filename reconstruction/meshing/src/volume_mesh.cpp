@@ -468,6 +468,15 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
       smooth_and_hold(f, g.spacing.minCoeff(), o, nullptr, vm, out);
     return vm;
   }
+  // The body as the clipped grid sees it (zero sheets inside), for the layer's coverage.
+  Eigen::VectorXd whole = S;
+  fill_zero_sheets(g, whole, o.epsilon, o.threads);
+  auto measure_coverage = [&](const VolumeMesh& vm) {
+    say("measuring the volume the layer leaves out (the grid clipped at F = 0)");
+    const CutTetrahedra body = cut_tetrahedra(f, g, whole, o.epsilon, o.threads);
+    out.coverage = uncovered_volume(body, g, vm.V, vm.C, o.threads);
+    out.suggested_cell = out.coverage.thickness() / kCellsAcrossWall;
+  };
   BoundaryMeshOptions bo;
   bo.cells = tets ? BackgroundCells::tetrahedra : BackgroundCells::hexahedra;
   bo.rule = o.rule;
@@ -476,7 +485,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
   bo.reach = kLayerReach;
   bo.scan_step = 0.25; // features thinner than h / 8 along the normal are below the grid anyway
   if (o.margin > 0)    // not in the seed's configurations: they keep its counts
-    fill_zero_sheets(g, S, o.epsilon, o.threads);
+    S = whole;
   if (o.margin > 0)
     out.dropped_nodes = drop_near_surface(f, g, S, bo, o.margin * g.spacing.minCoeff());
   say("inner cells and boundary facets");
@@ -490,6 +499,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     none.V.resize(0, 3);
     none.C.resize(0, tets ? 4 : 8);
     none.B.resize(0, tets ? 3 : 4);
+    measure_coverage(none);
     return none;
   }
   say("projecting " + std::to_string(m.V.rows()) + " boundary nodes onto F = 0");
@@ -553,6 +563,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
   for (long r = 0; r < n_top; ++r)
     layer.below[size_t(r)] = index_of(m.node(r));
   smooth_and_hold(f, g.spacing.minCoeff(), o, &layer, vm, out);
+  measure_coverage(vm);
   return vm;
 }
 
