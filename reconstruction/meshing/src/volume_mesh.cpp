@@ -222,6 +222,21 @@ std::vector<std::vector<Eigen::RowVector3d>> layer_corner_normals(const Eigen::M
   return out;
 }
 
+// Flags the layer nodes n_inner + r (in[r], #n_top) of the elements with a corner alpha <= 0.
+// Returns whether there is one.
+bool folded_layer_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, long n_inner,
+                        long n_top, std::vector<char>& in) {
+  const Eigen::MatrixXd A = corner_alphas(V, C);
+  in.assign(size_t(n_top), 0);
+  bool any = false;
+  for (long e = 0; e < C.rows(); ++e)
+    if (!(A.row(e).minCoeff() > 0))
+      for (long j = 0; j < C.cols(); ++j)
+        if (C(e, j) >= n_inner)
+          in[size_t(C(e, j) - n_inner)] = 1, any = true;
+  return any;
+}
+
 // Each round halves, for every node n_inner + r of a folded element, the fraction s[r] of the way
 // from its inner node below[r] (the other end of its layer element's edge) to target[r]; at most
 // kHoldHalvings rounds (a layer element h / 1024 high folds only where its edge directions or its
@@ -230,16 +245,9 @@ void halve_while_folded(const Eigen::MatrixXi& C, const std::vector<int>& below,
                         const Eigen::MatrixXd& target, std::vector<double>& s, Eigen::MatrixXd& V) {
   constexpr int kHoldHalvings = 10;
   const long n_top = long(below.size());
+  std::vector<char> pull;
   for (int round = 0; round < kHoldHalvings; ++round) {
-    const Eigen::MatrixXd A = corner_alphas(V, C);
-    std::vector<char> pull(size_t(n_top), 0);
-    bool any = false;
-    for (long e = 0; e < C.rows(); ++e)
-      if (!(A.row(e).minCoeff() > 0))
-        for (long j = 0; j < C.cols(); ++j)
-          if (C(e, j) >= n_inner)
-            pull[size_t(C(e, j) - n_inner)] = 1, any = true;
-    if (!any)
+    if (!folded_layer_nodes(C, V, n_inner, n_top, pull))
       return;
     for (long r = 0; r < n_top; ++r)
       if (pull[size_t(r)]) {
@@ -267,16 +275,9 @@ long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, do
   constexpr int kAimRounds = 3; // re-aiming one node can fold an element of a neighbour
   const auto normals = layer_corner_normals(layer.bottom, layer.top, n_inner, n_top, V);
   std::vector<char> aimed(size_t(n_top), 0);
+  std::vector<char> redo;
   for (int round = 0; round < kAimRounds; ++round) {
-    const Eigen::MatrixXd A = corner_alphas(V, C);
-    std::vector<char> redo(size_t(n_top), 0);
-    bool any = false;
-    for (long e = 0; e < C.rows(); ++e)
-      if (!(A.row(e).minCoeff() > 0))
-        for (long j = 0; j < C.cols(); ++j)
-          if (C(e, j) >= n_inner)
-            redo[size_t(C(e, j) - n_inner)] = 1, any = true;
-    if (!any)
+    if (!folded_layer_nodes(C, V, n_inner, n_top, redo))
       break;
     for (long r = 0; r < n_top; ++r) {
       if (!redo[size_t(r)] || normals[size_t(r)].empty())
