@@ -6,18 +6,26 @@
 // between stations, by project_to_surface for every surface (OCCT's evaluated by OCCT through
 // occt_parametric).
 //
-// Usage: blade_family [--cases N] [--family F] [--all-degrees] [--csv FILE] [--check]
-//   prints a Markdown table per case and a summary; --family F runs the fresh family F >= 1
-//   (analytic_blades.h: its own draws and section counts) instead of the reference family 0;
-//   --all-degrees adds the fixed options of every degree 2 to #sections - 1 (default 3, 5 and
-//   #sections - 1); --csv writes one row per case and model (leave-one-out and between-section
-//   errors) for studying the choice rule; --check verifies the projections of the default and
-//   OCCT surfaces from a finer start grid.
+// Usage: blade_family [--cases N | --only I,J,...] [--family F] [--all-degrees] [--csv FILE]
+//                     [--check] [--section-exponent E] [--section-curves]
+//   prints a Markdown table per case and a summary; --cases N runs the first N cases, --only the
+//   listed ones; --family F runs the fresh family F >= 1 (analytic_blades.h: its own draws and
+//   section counts) instead of the reference family 0; --all-degrees adds the fixed options of
+//   every degree 2 to #sections - 1 (default 3, 5 and #sections - 1); --csv writes one row per
+//   case and model (leave-one-out and between-section errors) for studying the choice rule;
+//   --check verifies the projections of the default and OCCT surfaces from a finer start grid;
+//   --section-exponent E lofts with section parameters chord^E (LoftOptions::section_exponent,
+//   default 1; 0.5 is `interlin loft --param centripetal`). --section-curves instead measures the
+//   section curves alone at the input stations (no span model): interlin's, variants of its
+//   closed interpolation, and OCCT's GeomAPI_Interpolate ("Where OCCT is closer").
 
 #include "occt_loft.h"
 
 #include "interlin/reconstruction/loft/closest_point.h"
 #include "interlin/reconstruction/loft/loft.h"
+#include "interlin/splines/interpolate_curve.h"
+#include "interlin/splines/knot_insertion.h"
+#include "interlin/splines/parameterization.h"
 
 #include "support/analytic_blades.h"
 
@@ -68,21 +76,146 @@ double projection_excess(const Eigen::VectorXd& measured, const ParametricSurfac
   return (measured - project_to_surface(S, P, 2048, 512, 64).distance).maxCoeff();
 }
 
-int run(int cases, int family, bool all_degrees, const char* csv_path, bool check) {
-  double excess = 0;
+// A section curve variant of the --section-curves study: closed interpolation of degree
+// `degree` with section parameters chord^exponent (interlin's periodic interpolant).
+struct CurveVariant {
+  std::string name;
+  double exponent;
+  int degree;
+  bool arc_length = false; // parameters: arc length along the first interpolant
+  bool midpoints = false;  // chord-length sites plus the midpoints of the first interpolant
+};
+
+// The closed cubic through P at chord-length sites u and, between consecutive points, at the mid
+// sites (u_i + u_i+1) / 2 through the parametric midpoints of C (sites s, #P + 1).
+BSplineCurve with_midpoints(const Eigen::MatrixXd& P, const BSplineCurve& C,
+                            const Eigen::VectorXd& s, const Eigen::VectorXd& u) {
+  const Eigen::Index n = P.rows();
+  Eigen::VectorXd mid_s(n), sites(2 * n + 1);
+  for (Eigen::Index i = 0; i < n; ++i)
+    mid_s(i) = 0.5 * (s(i) + s(i + 1));
+  const Eigen::MatrixXd M = evaluate(C, mid_s);
+  Eigen::MatrixXd Q(2 * n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Q.row(2 * i) = P.row(i);
+    Q.row(2 * i + 1) = M.row(i);
+    sites(2 * i) = u(i);
+    sites(2 * i + 1) = 0.5 * (u(i) + u(i + 1));
+  }
+  sites(2 * n) = 1;
+  return periodic_to_clamped(interpolate_closed(Q, sites, 3), 0.0);
+}
+
+// Normalised arc length of the closed curve C at its sites u (#P + 1, the last closing the loop),
+// by the trapezoidal rule on |C'| with 32 steps per interval.
+Eigen::VectorXd arc_length_at(const BSplineCurve& C, const Eigen::VectorXd& u) {
+  Eigen::VectorXd s = Eigen::VectorXd::Zero(u.size());
+  for (Eigen::Index i = 1; i < u.size(); ++i) {
+    const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(33, u(i - 1), u(i));
+    const Eigen::VectorXd speed = evaluate(C, t, 1).rowwise().norm();
+    s(i) = s(i - 1) + (speed.sum() - 0.5 * (speed(0) + speed(32))) * (u(i) - u(i - 1)) / 32;
+  }
+  return s / s(s.size() - 1);
+}
+
+// --section-curves: the error of the section curves alone at the input stations: interlin's
+// loft (its iso-curves there), variants of interlin's closed interpolation, and OCCT's
+// GeomAPI_Interpolate (the curves ThruSections lofts), all measured by
+// GeomAPI_ProjectPointOnCurve at true profile points between the input points.
+int run_section_curves(const std::vector<int>& cases, int family) {
+  const std::vector<CurveVariant> variants = {
+      {"chord 3", 1.0, 3},
+      {"centripetal 3", 0.5, 3},
+      {"chord 5", 1.0, 5},
+      {"arc length of centripetal 3", 0.5, 3, true},
+      {"chord sites + centripetal midpoints", 0.5, 3, false, true}};
+  std::printf("| case | loft (max / rms) |");
+  for (const CurveVariant& v : variants)
+    std::printf(" %s |", v.name.c_str());
+  std::printf(" OCCT | loft / OCCT (max, rms) |\n|---|---|");
+  for (size_t v = 0; v < variants.size() + 2; ++v)
+    std::printf("---|");
+  std::printf("\n");
+  std::vector<double> log_max(variants.size() + 1), log_rms(variants.size() + 1);
+  std::vector<double> worst(variants.size() + 1);
+  std::vector<int> worse(variants.size() + 1);
+  for (int i : cases) {
+    const test::BladeCase c = test::blade_case(i, 120, family);
+    LoftOptions o;
+    o.span = SpanParameters::chord;
+    o.span_degree = 3;
+    o.span_holdout = false; // the section curves do not depend on the span model
+    const LoftResult r = loft_sections(c.sections, o);
+    std::vector<std::vector<double>> d(variants.size() + 2);
+    const auto add = [&](size_t j, const Eigen::VectorXd& e) {
+      d[j].insert(d[j].end(), e.begin(), e.end());
+    };
+    for (size_t k = 0; k < c.sections.size(); ++k) {
+      const Eigen::MatrixXd& S = c.sections[k].points;
+      const Eigen::MatrixXd P = test::points_between_inputs(c, k, 8);
+      add(0, bench::occt_curve_distances(bench::occt_curve(test::iso_curve_at(
+                                             r.surface, r.section_v(static_cast<Eigen::Index>(k)))),
+                                         P));
+      for (size_t v = 0; v < variants.size(); ++v) {
+        Eigen::VectorXd u = chord_parameters(S, true, variants[v].exponent);
+        BSplineCurve C = periodic_to_clamped(interpolate_closed(S, u, variants[v].degree), 0.0);
+        if (variants[v].midpoints)
+          C = with_midpoints(S, C, u, chord_parameters(S, true, 1.0));
+        if (variants[v].arc_length) {
+          u = arc_length_at(C, u);
+          C = periodic_to_clamped(interpolate_closed(S, u, variants[v].degree), 0.0);
+        }
+        add(v + 1, bench::occt_curve_distances(bench::occt_curve(C), P));
+      }
+      add(variants.size() + 1, bench::occt_curve_distances(bench::occt_section_curve(S), P));
+    }
+    std::vector<Error> e;
+    for (const std::vector<double>& x : d)
+      e.push_back(error_of(Eigen::Map<const Eigen::VectorXd>(x.data(), Eigen::Index(x.size()))));
+    const Error& occt = e.back();
+    std::printf("| %s |", c.name.c_str());
+    for (size_t j = 0; j + 1 < e.size(); ++j) {
+      std::printf(" %.3g / %.3g |", e[j].max, e[j].rms);
+      log_max[j] += std::log(e[j].max / occt.max);
+      log_rms[j] += std::log(e[j].rms / occt.rms);
+      worst[j] = std::max({worst[j], e[j].max / occt.max, e[j].rms / occt.rms});
+      worse[j] += e[j].max > occt.max || e[j].rms > occt.rms;
+    }
+    std::printf(" %.3g / %.3g | %.3f, %.3f |\n", occt.max, occt.rms, e[0].max / occt.max,
+                e[0].rms / occt.rms);
+    std::fflush(stdout);
+  }
+  std::printf("\n| section curves | / OCCT, geometric mean (max, rms) | worst / OCCT | worse "
+              "than OCCT (max or rms) |\n|---|---|---|---|\n");
+  for (size_t j = 0; j < log_max.size(); ++j)
+    std::printf("| %s | %.3f, %.3f | %.3f | %d of %d |\n",
+                j == 0 ? "loft (chord 3)" : variants[j - 1].name.c_str(),
+                std::exp(log_max[j] / double(cases.size())),
+                std::exp(log_rms[j] / double(cases.size())), worst[j], worse[j], int(cases.size()));
+  return 0;
+}
+
+void quiet_occt() {
   for (Message_SequenceOfPrinters::Iterator it(Message::DefaultMessenger()->Printers()); it.More();
        it.Next())
     it.Value()->SetTraceLevel(Message_Fail);
+}
+
+int run(const std::vector<int>& cases, int family, bool all_degrees, const char* csv_path,
+        bool check, double section_exponent) {
+  double excess = 0;
   FILE* csv = csv_path ? std::fopen(csv_path, "w") : nullptr;
   if (csv)
     std::fprintf(csv, "case,K,stacking,model,loo_max,loo_rms,between_max,between_rms\n");
   double worst_occt_max = 0, worst_occt_rms = 0, worst_fixed_max = 0, worst_fixed_rms = 0;
   std::printf("| case | default model | LOO max | between max / rms | / OCCT (max, rms) | / best "
               "fixed (max, rms) | best fixed |\n|---|---|---|---|---|---|---|\n");
-  for (int i = 0; i < cases; ++i) {
+  for (int i : cases) {
     const test::BladeCase c = test::blade_case(i, 120, family);
     const int K = static_cast<int>(c.sections.size());
-    const LoftResult def = loft_sections(c.sections);
+    LoftOptions base;
+    base.section_exponent = section_exponent;
+    const LoftResult def = loft_sections(c.sections, base);
     std::vector<Row> rows;
     rows.push_back({"default", def.span.used, between_error(c, def)});
     if (check) {
@@ -97,7 +230,7 @@ int run(int cases, int family, bool all_degrees, const char* csv_path, bool chec
         if ((!all_degrees && q != 3 && q != 5 && q != K - 1) ||
             (p == SpanParameters::station && def.span.stations.stacking == Stacking::none))
           continue;
-        LoftOptions o;
+        LoftOptions o = base;
         o.span = p;
         o.span_degree = q;
         const LoftResult r = loft_sections(c.sections, o);
@@ -157,23 +290,39 @@ int run(int cases, int family, bool all_degrees, const char* csv_path, bool chec
 } // namespace
 
 int main(int argc, char** argv) {
-  int cases = test::kBladeCases, family = 0;
+  int family = 0;
+  std::vector<int> cases;
+  for (int i = 0; i < test::kBladeCases; ++i)
+    cases.push_back(i);
+  double section_exponent = LoftOptions{}.section_exponent;
   const char* csv = nullptr;
-  bool check = false, all_degrees = false;
+  bool check = false, all_degrees = false, section_curves = false;
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--check"))
       check = true;
+    else if (!std::strcmp(argv[a], "--section-curves"))
+      section_curves = true;
     else if (!std::strcmp(argv[a], "--all-degrees"))
       all_degrees = true;
     else if (!std::strcmp(argv[a], "--family") && a + 1 < argc)
       family = std::atoi(argv[++a]);
     else if (!std::strcmp(argv[a], "--cases") && a + 1 < argc)
-      cases = std::atoi(argv[++a]);
+      cases.resize(static_cast<size_t>(std::clamp(std::atoi(argv[++a]), 0, test::kBladeCases)));
+    else if (!std::strcmp(argv[a], "--only") && a + 1 < argc) {
+      cases.clear();
+      for (char* p = argv[++a]; *p;) {
+        cases.push_back(static_cast<int>(std::strtol(p, &p, 10)));
+        p += *p == ',';
+      }
+    } else if (!std::strcmp(argv[a], "--section-exponent") && a + 1 < argc)
+      section_exponent = std::atof(argv[++a]);
     else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc)
       csv = argv[++a];
   }
   try {
-    return run(cases, family, all_degrees, csv, check);
+    quiet_occt();
+    return section_curves ? run_section_curves(cases, family)
+                          : run(cases, family, all_degrees, csv, check, section_exponent);
   } catch (const Standard_Failure& e) {
     std::fprintf(stderr, "blade_family: OpenCASCADE: %s\n", e.GetMessageString());
   } catch (const std::exception& e) {

@@ -11,9 +11,11 @@
 // orientation and start point, one edge each), so the compatibility pass has nothing to do.
 
 #include "interlin/reconstruction/loft/closest_point.h"
+#include "interlin/splines/bspline_curve.h"
 
 #include <Eigen/Core>
 
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_Surface.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Wire.hxx>
@@ -22,9 +24,22 @@
 
 namespace interlin::bench {
 
+// The periodic interpolating cubic B-spline through the rows of P (#P by 3, closing edge implicit,
+// no repeated point): GeomAPI_Interpolate, periodic, its own chord-length parameters.
+// Throws std::runtime_error if OCCT's interpolation fails.
+Handle(Geom_BSplineCurve) occt_section_curve(const Eigen::MatrixXd& P);
+
+// interlin's clamped (non-periodic) B-spline curve C (3-D) as an OCCT curve, the same geometry.
+Handle(Geom_BSplineCurve) occt_curve(const BSplineCurve& C);
+
+// Distances of the rows of P (#P by 3) to C by GeomAPI_ProjectPointOnCurve (every extremum, the
+// lowest kept), or the distance to a polyline of 20000 points on C where that is lower (an
+// extremum the projector missed).
+Eigen::VectorXd occt_curve_distances(const Handle(Geom_Curve) & C, const Eigen::MatrixXd& P);
+
 // Closed wire of one section.
 // Inputs:  P  #P by 3 profile points (closing edge implicit, no repeated point)
-// Output:  a wire with one edge on the periodic interpolating B-spline through P
+// Output:  a wire with one edge on occt_section_curve(P)
 // Throws std::runtime_error if OCCT's interpolation or edge construction fails.
 TopoDS_Wire occt_section_wire(const Eigen::MatrixXd& P);
 

@@ -33,18 +33,23 @@ def fixed_options(c):
     return [k for k in c["m"] if k not in ("default", "occt") and int(k.split()[1]) in (3, 5, c["K"] - 1)]
 
 
-def rule(params, score="max"):
-    """Lowest leave-one-out score among params x degrees K-1 (at most 9), 5, 3; ties to the earlier."""
+def rule(params, score="max", tie="first", degrees=None):
+    """Lowest leave-one-out score among params x degrees K-1 (at most 9), 5, 3 (or `degrees`, a
+    function of K); ties to the earlier, or with tie="lower" to the lower degree (a fold has one
+    section fewer, so degrees K-1 and K-2 give the same fold model and tie)."""
     def choose(c):
         K, out = c["K"], []
+        qs = degrees(K) if degrees else (min(K - 1, 9), 5, 3)
         for p in params:
             if p == "station" and c["stacking"] == "none":
                 continue
-            for q in dict.fromkeys(min(q, K - 1) for q in (min(K - 1, 9), 5, 3)):
+            for q in dict.fromkeys(min(q, K - 1) for q in qs):
                 out.append(f"{p} {q}")
         m = c["m"]
         value = {"max": lambda k: m[k]["loo_max"], "rms": lambda k: m[k]["loo_rms"],
                  "max x rms": lambda k: math.sqrt(m[k]["loo_max"] * m[k]["loo_rms"])}[score]
+        if tie == "lower":
+            return min(out, key=lambda k: (value(k), int(k.split()[1]), out.index(k)))
         return min(out, key=lambda k: (value(k), out.index(k)))
     return choose
 
@@ -87,6 +92,8 @@ RULES = [
     ("station prior, margin 0.9 (station, chord, uniform)", station_prior(("station", "chord", "uniform"), 0.9)),
     ("degree penalty 0.25 (station, chord, uniform)", degree_penalty(("station", "chord", "uniform"), 0.25)),
     ("degree penalty 0.5 (station, chord, centripetal)", degree_penalty(("station", "chord", "centripetal"), 0.5)),
+    ("station, chord, uniform; max; ties to the lower degree", rule(("station", "chord", "uniform"), tie="lower")),
+    ("station, chord, uniform; max; degrees 5, 3 (no K-1)", rule(("station", "chord", "uniform"), degrees=lambda K: (5, 3))),
 ]
 
 

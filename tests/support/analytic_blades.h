@@ -19,6 +19,8 @@
 
 #include "interlin/reconstruction/io/section_csv.h"
 #include "interlin/reconstruction/loft/closest_point.h"
+#include "interlin/splines/bspline_curve.h"
+#include "interlin/splines/spline_basis.h"
 
 #include <Eigen/Core>
 #include <array>
@@ -249,6 +251,31 @@ inline Eigen::VectorXd between_distances(const BladeCase& c, const ParametricSur
       v0(k * m + i) = 0.5 * (f.v(a) + f.v(b));
     }
   return f.distance.head(nb).cwiseMin(project_from(S, c.between, u0, v0).distance);
+}
+
+// True profile points of section k of a case densely between its input points: per_gap - 1
+// angles evenly inside each gap between consecutive input angles (the input points, where every
+// interpolant is exact, left out). Output: #P (per_gap - 1) by 3.
+inline Eigen::MatrixXd points_between_inputs(const BladeCase& c, size_t k, int per_gap) {
+  const Eigen::VectorXd& t = c.angles[k];
+  Eigen::VectorXd dense(t.size() * (per_gap - 1));
+  for (Eigen::Index i = 0; i < t.size(); ++i) {
+    const double next = i + 1 < t.size() ? t(i + 1) : t(0) + 2 * M_PI;
+    for (int j = 1; j < per_gap; ++j)
+      dense(i * (per_gap - 1) + j - 1) = t(i) + (next - t(i)) * j / per_gap;
+  }
+  return c.blade.points(c.stations[k], dense);
+}
+
+// The curve u -> S(u, v) of a surface at one v (the section curve of a loft at v = v_k, where the
+// loft interlineates it): control points sum_j M_j(v) ctrl(., j).
+inline BSplineCurve iso_curve_at(const BSplineSurface& S, double v) {
+  Eigen::Index span;
+  const Eigen::MatrixXd M = basis_derivatives(explicit_basis(S.knots_v, S.degree_v), v, 0, &span);
+  Eigen::MatrixXd ctrl = Eigen::MatrixXd::Zero(S.num_u, 3);
+  for (int j = 0; j <= S.degree_v; ++j)
+    ctrl += M(0, j) * S.ctrl.middleRows(S.num_u * (span - S.degree_v + j), S.num_u);
+  return {S.degree_u, S.knots_u, ctrl, false};
 }
 
 // Number of cases in the family: every law with every spacing, stacking and count.
