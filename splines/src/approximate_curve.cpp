@@ -60,6 +60,23 @@ VectorXd periodic_quantile_knots(const VectorXd& u, int p, Index n) {
   return t;
 }
 
+// Periodic knots rounded to multiples of `grid` (ApproximationOptions::knot_grid): the
+// parameters' start and period must be multiples of it, so that the domain stays where the
+// parameters are and the rounded knots stay periodic.
+VectorXd round_knots(const VectorXd& t, double grid, double start, double period) {
+  const auto on_grid = [grid](double x) {
+    return std::abs(x / grid - std::round(x / grid)) < 1e-9;
+  };
+  if (!on_grid(start) || !on_grid(period))
+    throw std::invalid_argument(
+        "curve approximation: knot_grid needs parameters from and over multiples of it");
+  VectorXd r = (t / grid).array().round() * grid;
+  for (Index i = 0; i + 1 < t.size(); ++i)
+    if ((t(i + 1) > t(i)) != (r(i + 1) > r(i)))
+      throw std::invalid_argument("curve approximation: knot_grid merges knots");
+  return r;
+}
+
 // G(i, j) = int N_i'' N_j'' over the domain (columns wrapped modulo `wrap` when > 0).
 MatrixXd bending_gram(const SplineBasis& B, Index ncols, Index wrap) {
   const int p = B.degree;
@@ -116,6 +133,8 @@ Approximation approximate_curve(const MatrixXd& P, const ApproximationOptions& o
     throw std::invalid_argument(
         "curve approximation: num_ctrl must lie in [degree + 1, #points] = [" +
         std::to_string(p + 1) + ", " + std::to_string(N) + "]");
+  if (!(o.knot_grid >= 0) || !std::isfinite(o.knot_grid) || (o.knot_grid > 0 && !o.closed))
+    throw std::invalid_argument("curve approximation: knot_grid must be >= 0 (closed curves only)");
   if (o.parameters.size() != 0 && o.parameters.size() != N + (o.closed ? 1 : 0))
     throw std::invalid_argument("curve approximation: " + std::to_string(o.parameters.size()) +
                                 " parameters for " + std::to_string(N) + " points");
@@ -134,6 +153,8 @@ Approximation approximate_curve(const MatrixXd& P, const ApproximationOptions& o
     c.degree = p;
     c.periodic = o.closed;
     c.knots = o.closed ? periodic_quantile_knots(u, p, n) : approximation_knots(u, p, n);
+    if (o.knot_grid > 0)
+      c.knots = round_knots(c.knots, o.knot_grid, u(0), u(N) - u(0));
     const SplineBasis B = explicit_basis(c.knots, p);
     const VectorXd sites = o.closed ? VectorXd(u.head(N)) : u;
     std::vector<Index> rows, cols;

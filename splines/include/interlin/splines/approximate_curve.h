@@ -21,6 +21,11 @@ struct ApproximationOptions {
   // Given parameters instead (#P increasing from 0, closed: #P + 1 with the closing one last;
   // e.g. chord lengths of a smoothed copy of noisy points); empty: chord_parameters(P).
   Eigen::VectorXd parameters;
+  // Closed curves only, > 0: every knot is rounded to a multiple of knot_grid (the parameters
+  // must start at one and span one, e.g. chord parameters 0..1 and a power of 1/2), so that
+  // curves fitted separately share knot values and their knot union (make_compatible) has no
+  // near-coincident knots. Throws std::invalid_argument if rounding merges two knots.
+  double knot_grid = 0;
 };
 
 struct Approximation {
