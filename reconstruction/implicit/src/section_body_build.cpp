@@ -137,16 +137,28 @@ std::vector<PatchSeed> boundary_samples(const BodyPatches& B, int nu, int nv) {
   return out;
 }
 
-} // namespace
-
-SectionBodyBuild build_section_body(const std::vector<Section>& sections,
-                                    const SectionBodyOptions& o) {
+// The options' rules (build_section_body).
+void check_body_options(const SectionBodyOptions& o) {
   if (o.resolution < 8 || o.resolution > 1024)
     throw std::invalid_argument("section body: resolution must be from 8 to 1024");
   if (!(o.margin > 0) || !(o.band_inner > 0 && o.band_outer > o.band_inner))
     throw std::invalid_argument("section body: need margin > 0 and 0 < band_inner < band_outer");
   if (o.checks_per_cell < 0)
     throw std::invalid_argument("section body: checks_per_cell must be >= 0");
+}
+
+} // namespace
+
+SectionBodyBuild build_section_body(const std::vector<Section>& sections,
+                                    const SectionBodyOptions& o) {
+  check_body_options(o);
+  if (o.progress)
+    o.progress("lofting " + std::to_string(sections.size()) + " sections");
+  return build_section_body(loft_sections(sections, o.loft), o);
+}
+
+SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOptions& o) {
+  check_body_options(o);
   const auto progress = [&](const std::string& s) {
     if (o.progress)
       o.progress(s);
@@ -156,8 +168,7 @@ SectionBodyBuild build_section_body(const std::vector<Section>& sections,
   SectionBodyReport& R = out.report;
   SectionBodyModel& M = out.model;
 
-  progress("lofting " + std::to_string(sections.size()) + " sections");
-  R.loft = loft_sections(sections, o.loft);
+  R.loft = loft;
   const LoftResult& L = R.loft;
   M.side = L.surface;
   M.edge_u = {cap_edges(L, 0), cap_edges(L, L.sections.size() - 1)};

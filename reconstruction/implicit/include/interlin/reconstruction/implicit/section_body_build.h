@@ -58,4 +58,9 @@ struct SectionBodyBuild {
 SectionBodyBuild build_section_body(const std::vector<Section>& sections,
                                     const SectionBodyOptions& options = {});
 
+// The same from a loft already made (options.loft unused): e.g. fit_sliced_scan's loft of the
+// fitted section curves themselves, which loft_sections of their samples would only approximate
+// between the samples. Needs loft.sections[k].points and loft.point_u[k] (the cap edges).
+SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOptions& options);
+
 } // namespace interlin
