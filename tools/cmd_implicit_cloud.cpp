@@ -62,7 +62,6 @@ void unused(const ParsedArgs& a, const std::vector<const char*>& options, const 
 void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& family, double noise,
                SectionBodyOptions bo, const std::string& output, const Progress& progress) {
   unused(a, {"max-depth"}, "it applies to the unstructured fit", progress);
-  bo.loft = sliced_scan_loft_options();
   SliceFitOptions so;
   so.noise = noise;
   so.progress = progress;
@@ -85,7 +84,7 @@ void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& fami
             << (noise > 0 ? " (given)" : " (the slices' spread)") << ", largest rms residual "
             << fmt(rms, 3) << "; fitted curves to the loft " << fmt(fit.section_gap, 3) << "\n";
   progress("implicit body of the loft");
-  const SectionBodyBuild b = build_section_body(fitted_sections(fit.sections), bo);
+  const SectionBodyBuild b = build_section_body(fit.loft, bo);
   print_section_body(b, std::to_string(fit.sections.size()) + " fitted");
   progress("writing " + output);
   write_model(output, to_ifl(b.model));

@@ -105,13 +105,12 @@ ImplicitModel sliced_body(const PointCloud& c, const SliceFamily& family, double
   SliceFitOptions so;
   so.noise = noise;
   so.progress = o.progress;
-  o.loft = sliced_scan_loft_options();
   SlicedFit fit;
   SectionBodyBuild b;
   {
     py::gil_scoped_release release;
     fit = fit_sliced_scan(c.points, family, so);
-    b = build_section_body(fitted_sections(fit.sections), o);
+    b = build_section_body(fit.loft, o);
   }
   ImplicitModel M = section_body_model(b);
   M.report["slices"] = family.kind == SliceKind::planar ? "planar" : "radial";

@@ -1,6 +1,8 @@
 #include "interlin/reconstruction/clouds/fit_sliced_scan.h"
 
+#include "interlin/interlineation/interlinate_curves.h"
 #include "interlin/splines/approximate_curve.h"
+#include "interlin/splines/knot_insertion.h"
 #include "interlin/splines/parameterization.h"
 
 #include <Eigen/Geometry>
@@ -17,9 +19,8 @@ using Eigen::Vector3d;
 namespace {
 
 constexpr int kSmoothingHalfWidth = 3; // parameters: moving average over 7 ordered points
-// Section samples handed to the loft, evenly spaced by arc length: at least 400 and 8 per control
-// point (the loft's cubic through them then stays within about 1e-4 of the profile's size of the
-// fitted curve at a nose of radius 1 % of the chord).
+// Section samples (FittedSection::section), evenly spaced by arc length: at least 400 and 8 per
+// control point.
 constexpr int kMinSamples = 400, kSamplesPerControl = 8;
 // The rms residual to reach, in sigma: sqrt(2) for the in-plane residual of isotropic noise,
 // with 6 % for the parameters' own error.
@@ -27,8 +28,18 @@ constexpr double kResidualRatio = 1.5;
 // At least this many points per control point: randomly spaced points leave knot spans nearly
 // empty when there are more control points, and the curve oscillates between the points.
 constexpr Index kPointsPerControl = 4;
+// Knots of every fitted section on multiples of 2^-16 of the parameter period: the sections'
+// knot union then has no spans shorter than that (the loft snaps its parameters at 1e-5 for the
+// same reason: spans well inside the range where the explicit basis is exact to round-off), and
+// moving a knot by less than 1e-5 of the period changes nothing measurable in a least-squares
+// fit of at most #points / 4 spans.
+constexpr double kKnotGrid = 1.0 / 65536;
+// The surface must reproduce each fitted curve to this fraction of the diagonal (as loft_sections
+// guarantees for its input points).
+constexpr double kExactness = 1e-9;
 
-// The 2D coordinates of a slice and back (see FittedSection::curve).
+// The 2D coordinates of a slice and back: in-plane axes (planar), or arc length r * angle and the
+// axial coordinate (radial); to_space(to_plane(p)) moves p onto the slice surface.
 struct SliceFrame {
   SliceKind kind;
   Vector3d axis, e1, e2;
@@ -62,112 +73,184 @@ struct SliceFrame {
   }
 };
 
-// m parameters of a closed curve evenly spaced by arc length (a polygon of 16 m points).
-Eigen::VectorXd arc_length_parameters(const BSplineCurve& c, int m) {
-  const double u0 = domain_begin(c), u1 = domain_end(c);
-  const int dense = 16 * m;
-  const Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(dense + 1, u0, u1);
-  const MatrixXd D = evaluate(c, t);
+// Arc length along a curve, tabulated on a polygon of `chords` chords evenly spaced in the
+// parameter: the fraction of the length at a parameter and the parameter at a fraction (linear
+// along each chord).
+struct ArcLength {
+  Eigen::VectorXd t;
   std::vector<double> len{0};
-  for (int i = 1; i <= dense; ++i)
-    len.push_back(len.back() + (D.row(i) - D.row(i - 1)).norm());
-  Eigen::VectorXd u(m);
-  for (int j = 0; j < m; ++j) {
-    const double target = len.back() * j / m;
-    const size_t i = size_t(std::upper_bound(len.begin(), len.end(), target) - len.begin()) - 1;
+  ArcLength(const BSplineCurve& c, int chords)
+      : t(Eigen::VectorXd::LinSpaced(chords + 1, domain_begin(c), domain_end(c))) {
+    const MatrixXd D = evaluate(c, t);
+    for (int i = 1; i <= chords; ++i)
+      len.push_back(len.back() + (D.row(i) - D.row(i - 1)).norm());
+  }
+  double fraction(double u) const {
+    const double h = t(1) - t(0);
+    const Index i = std::clamp<Index>(Index(std::floor((u - t(0)) / h)), 0, t.size() - 2);
+    const double f = (u - t(i)) / h;
+    return (len[size_t(i)] + f * (len[size_t(i) + 1] - len[size_t(i)])) / len.back();
+  }
+  double parameter(double fraction) const {
+    const double target = fraction * len.back();
+    const size_t i = std::min(
+        size_t(std::upper_bound(len.begin(), len.end(), target) - len.begin()) - 1, len.size() - 2);
     const double f = len[i + 1] > len[i] ? (target - len[i]) / (len[i + 1] - len[i]) : 0;
-    u(j) = t(Index(i)) + f * (t(Index(i) + 1) - t(Index(i)));
+    return t(Index(i)) + f * (t(Index(i) + 1) - t(Index(i)));
   }
-  return u;
-}
+};
 
-// Chord-length parameters of the ordered points after a circular moving average.
-Eigen::VectorXd smoothed_parameters(const MatrixXd& Q) {
-  const Index n = Q.rows();
-  MatrixXd S = MatrixXd::Zero(n, Q.cols());
-  for (Index i = 0; i < n; ++i) {
-    for (int k = -kSmoothingHalfWidth; k <= kSmoothingHalfWidth; ++k)
-      S.row(i) += Q.row(((i + k) % n + n) % n);
-    S.row(i) /= 2 * kSmoothingHalfWidth + 1;
-  }
-  return chord_parameters(S, true);
-}
+// One slice's points projected onto its slice surface (plane or cylinder) in 3D, in order around
+// the profile, and the same after a circular moving average (for parameters and edges, which
+// the noise would otherwise jitter).
+struct OrderedSlice {
+  MatrixXd points, smoothed;
+};
 
-FittedSection fit_slice(const Eigen::MatrixX3d& P, const SliceFamily& f, size_t k, double noise,
-                        int samples, SliceFrame& frame) {
-  const std::vector<Index>& rows = f.members[k];
+OrderedSlice ordered_slice(const Eigen::MatrixX3d& P, const std::vector<Index>& rows,
+                           const SliceFrame& frame) {
   const Index n = Index(rows.size());
   Eigen::MatrixX2d Q(n, 2);
   for (Index i = 0; i < n; ++i)
     Q.row(i) = frame.to_plane(P.row(rows[size_t(i)]).transpose()).transpose();
   const std::vector<Index> order = order_profile(Q);
-  const MatrixXd O = Q(order, Eigen::all);
+  OrderedSlice s{MatrixXd(n, 3), MatrixXd(n, 3)};
+  for (Index i = 0; i < n; ++i) {
+    Eigen::Vector2d m = Eigen::Vector2d::Zero();
+    for (int k = -kSmoothingHalfWidth; k <= kSmoothingHalfWidth; ++k)
+      m += Q.row(order[size_t(((i + k) % n + n) % n)]).transpose();
+    s.points.row(i) = frame.to_space(Q.row(order[size_t(i)]).transpose()).transpose();
+    s.smoothed.row(i) = frame.to_space(m / (2 * kSmoothingHalfWidth + 1)).transpose();
+  }
+  return s;
+}
+
+// Closed-curve parameters s[k] (#P + 1 from 0 to 1, leading edge first) mapped piecewise
+// linearly so that every trailing edge (row te[k]) sits at one common parameter, the mean of
+// theirs (as loft_sections does with arc-length correspondence).
+void align_trailing_edges(std::vector<Eigen::VectorXd>& s, const std::vector<Index>& te) {
+  double F = 0;
+  for (size_t k = 0; k < s.size(); ++k)
+    F += s[k](te[k]) / double(s.size());
+  for (size_t k = 0; k < s.size(); ++k) {
+    const double f = s[k](te[k]);
+    Eigen::VectorXd& u = s[k];
+    for (Index i = 0; i < u.size(); ++i)
+      u(i) = u(i) <= f ? u(i) * F / f : F + (u(i) - f) * (1 - F) / (1 - f);
+    u(0) = 0, u(u.size() - 1) = 1;
+  }
+}
+
+// A closed cubic through the points at parameters u with `control` control points, knots on the
+// grid.
+Approximation refit_profile(const MatrixXd& points, const Eigen::VectorXd& u, Index control) {
   ApproximationOptions o;
   o.degree = 3;
   o.closed = true;
-  o.parameters = smoothed_parameters(O);
-  // discrepancy principle: the fewest control points (8, 16, ... n / kPointsPerControl) whose
-  // rms residual is within kResidualRatio sigma (2D residuals of isotropic noise: sqrt(2) sigma);
-  // a floor of 1e-7 of the profile's size stands for round-off when the noise is 0
-  const double floor = 1e-7 * (O.colwise().maxCoeff() - O.colwise().minCoeff()).norm();
+  o.parameters = u;
+  o.knot_grid = kKnotGrid;
+  o.num_ctrl = int(control);
+  return approximate_curve(points, o);
+}
+
+// Discrepancy principle: the fewest control points (8, 16, ... n / kPointsPerControl) whose rms
+// residual is within kResidualRatio sigma (in-plane residuals of isotropic noise: sqrt(2) sigma); a
+// floor of 1e-7 of the profile's size stands for round-off when the noise is 0. Output: a closed
+// (periodic) cubic with knots on the grid.
+Approximation fit_profile(const MatrixXd& points, const Eigen::VectorXd& u, double noise) {
+  const Index n = points.rows();
+  const double floor = 1e-7 * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
   const Index most = std::max<Index>(8, n / kPointsPerControl);
   Approximation a;
   for (Index c = 8;; c = std::min(most, 2 * c)) {
-    o.num_ctrl = int(c);
-    a = approximate_curve(O, o);
+    a = refit_profile(points, u, c);
     if (a.rms_deviation <= std::max(kResidualRatio * noise, floor) || c == most)
-      break;
+      return a;
   }
+}
+
+// The fitted section: the curve, its residuals and its arc-length samples.
+FittedSection fitted_section(const Approximation& a, double station, Index points, int samples) {
   FittedSection s;
-  s.station = f.stations[k];
-  s.points = n;
-  s.curve = a.curve;
+  s.station = station;
+  s.points = points;
+  s.curve = periodic_to_clamped(a.curve, 0.0);
   s.control = int(a.curve.ctrl.rows()) - a.curve.degree;
   s.rms = a.rms_deviation;
   s.max = a.max_deviation;
   const int m = samples > 0 ? samples : std::max(kMinSamples, kSamplesPerControl * s.control);
-  const Eigen::VectorXd u = arc_length_parameters(a.curve, m);
-  const MatrixXd C = evaluate(a.curve, u);
-  s.section.resize(m, 3);
-  for (int i = 0; i < m; ++i)
-    s.section.row(i) = frame.to_space(C.row(i).transpose()).transpose();
-  s.u = u;
+  const ArcLength arc(s.curve, 16 * m);
+  s.u.resize(m);
+  for (int j = 0; j < m; ++j)
+    s.u(j) = arc.parameter(double(j) / m);
+  s.section = evaluate(s.curve, s.u);
   return s;
 }
 
+// The loft of the fitted curves: on one knot vector (knot insertion, exact) and interlinated
+// cubically along the span at the stations (seed 001 §2.5; interlinate_curves), so S(u, v_k)
+// equals curve k for every u. Its deviation from each section's samples is recorded as
+// loft_sections records its input points'.
+LoftResult loft_fitted_curves(const std::vector<FittedSection>& fitted,
+                              std::vector<PreparedSection> prepared,
+                              std::vector<std::string> notes) {
+  const Index K = Index(fitted.size());
+  std::vector<BSplineCurve> curves;
+  Eigen::VectorXd v(K);
+  for (Index k = 0; k < K; ++k) {
+    curves.push_back(fitted[size_t(k)].curve);
+    v(k) = (fitted[size_t(k)].station - fitted[0].station) /
+           (fitted.back().station - fitted[0].station);
+  }
+  LoftResult r;
+  r.span.used.parameters = SpanParameters::station;
+  r.span.used.degree = int(std::min<Index>(3, K - 1));
+  r.surface = interlinate_curves(make_compatible(curves), v, r.span.used.degree, true);
+  r.section_v = v;
+  r.used = Correspondence::arc_length;
+  r.notes = std::move(notes);
+  const PiecewiseSurface S = to_piecewise(r.surface);
+  Eigen::AlignedBox3d box;
+  for (Index k = 0; k < K; ++k) {
+    const FittedSection& f = fitted[size_t(k)];
+    PreparedSection& p = prepared[size_t(k)];
+    p.points = f.section;
+    p.lines.assign(size_t(f.section.rows()), 0);
+    p.source.resize(size_t(f.section.rows()));
+    for (size_t i = 0; i < p.source.size(); ++i)
+      p.source[i] = Index(i), p.lines[i] = long(i) + 1;
+    p.le = 0;
+    p.te = -1;
+    Eigen::VectorXd d(f.section.rows());
+    for (Index i = 0; i < d.size(); ++i) {
+      d(i) = (evaluate(S, f.u(i), v(k)) - f.section.row(i).transpose()).norm();
+      box.extend(f.section.row(i).transpose());
+    }
+    r.point_u.push_back(Eigen::VectorXd(d.size() + 1));
+    r.point_u.back() << f.u, 1.0;
+    r.deviation.push_back(d);
+    r.max_deviation = std::max(r.max_deviation, d.maxCoeff());
+  }
+  r.sections = std::move(prepared);
+  r.bbox_diagonal = box.diagonal().norm();
+  return r;
+}
+
 // Largest distance from the fitted curves, halfway between their samples, to the loft's section
-// curves S(u, v_k): Newton on |S(u, v_k) - m|^2 from the mean u of the two samples.
-double section_gap(const std::vector<FittedSection>& sections,
-                   const std::vector<SliceFrame>& frames, const LoftResult& loft) {
+// curves S(u, v_k) at the same parameter (an upper bound of the distance between the curves).
+double section_gap(const std::vector<FittedSection>& sections, const LoftResult& loft) {
   const PiecewiseSurface S = to_piecewise(loft.surface);
   double gap = 0;
   for (size_t k = 0; k < sections.size(); ++k) {
-    const BSplineCurve& c = sections[k].curve;
-    const Index m = sections[k].section.rows();
-    Eigen::VectorXd u_of(m); // the loft's u of each input sample (preparation rolls, reverses)
-    const PreparedSection& prep = loft.sections[k];
-    for (size_t r = 0; r < prep.source.size(); ++r)
-      u_of(prep.source[r]) = loft.point_u[k](Index(r));
-    const double v = loft.section_v(Index(k)), period = domain_end(c) - domain_begin(c);
+    const Eigen::VectorXd& u = sections[k].u;
+    const Index m = u.size();
     Eigen::VectorXd mid(m);
-    for (Index i = 0; i < m; ++i) // halfway in the fitted curve's parameter
-      mid(i) = i + 1 < m ? 0.5 * (sections[k].u(i) + sections[k].u(i + 1))
-                         : sections[k].u(i) + 0.5 * (sections[k].u(0) + period - sections[k].u(i));
-    const MatrixXd C = evaluate(c, mid);
-    for (Index i = 0; i < m; ++i) {
-      const Vector3d p = frames[k].to_space(C.row(i).transpose());
-      double a = u_of(i), b = u_of((i + 1) % m);
-      if (std::abs(b - a) > 0.5) // across the seam
-        b += b < a ? 1 : -1;
-      double u = 0.5 * (a + b);
-      for (int it = 0; it < 8; ++it) {
-        const double w = u - std::floor(u);
-        const Vector3d d = evaluate(S, w, v) - p, su = evaluate(S, w, v, 1, 0);
-        const double h = su.squaredNorm() + d.dot(evaluate(S, w, v, 2, 0));
-        u -= d.dot(su) / (h > 0 ? h : su.squaredNorm());
-      }
-      gap = std::max(gap, (evaluate(S, u - std::floor(u), v) - p).norm());
-    }
+    for (Index i = 0; i < m; ++i)
+      mid(i) = 0.5 * (u(i) + (i + 1 < m ? u(i + 1) : 1.0));
+    const MatrixXd C = evaluate(sections[k].curve, mid);
+    for (Index i = 0; i < m; ++i)
+      gap = std::max(gap,
+                     (evaluate(S, mid(i), loft.section_v(Index(k))) - C.row(i).transpose()).norm());
   }
   return gap;
 }
@@ -210,15 +293,55 @@ SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
   SlicedFit r;
   r.family = family;
   r.noise = options.noise > 0 ? options.noise : family.spread;
-  std::vector<SliceFrame> frames;
+  // Order each slice, then one winding and the start at the leading edge for all (the edges of
+  // the smoothed profiles, prepare_sections), and common parameters.
+  std::vector<OrderedSlice> slices;
+  std::vector<Section> smoothed;
   for (size_t k = 0; k < family.members.size(); ++k) {
-    frames.emplace_back(family, family.stations[k], P, family.members[k]);
-    r.sections.push_back(fit_slice(P, family, k, r.noise, options.samples, frames.back()));
+    const SliceFrame frame(family, family.stations[k], P, family.members[k]);
+    slices.push_back(ordered_slice(P, family.members[k], frame));
+    Section s;
+    s.id = std::to_string(k + 1);
+    s.points = slices.back().smoothed;
+    s.lines.assign(size_t(s.points.rows()), 0);
+    smoothed.push_back(std::move(s));
   }
+  std::vector<std::string> notes;
+  const std::vector<PreparedSection> prepared =
+      prepare_sections(smoothed, StartAlign::leading_edge, notes);
+  // Pass 1: parameters from the smoothed polyline, control points by the discrepancy principle.
+  // Pass 2, the same control points: each point's arc-length fraction on its pass-1 curve, so
+  // that u means the same fraction of the profile in every section (the loft's correspondence;
+  // the smoothed polyline cuts the noses short, by a different share in each section).
+  std::vector<MatrixXd> points;
+  std::vector<Eigen::VectorXd> u;
+  std::vector<Index> te;
+  for (size_t k = 0; k < slices.size(); ++k) {
+    points.push_back(slices[k].points(prepared[k].source, Eigen::all));
+    u.push_back(chord_parameters(prepared[k].points, true));
+    te.push_back(prepared[k].te);
+  }
+  align_trailing_edges(u, te);
+  std::vector<Approximation> fits;
+  for (size_t k = 0; k < slices.size(); ++k) {
+    fits.push_back(fit_profile(points[k], u[k], r.noise));
+    const ArcLength arc(fits[k].curve, 16 * int(points[k].rows()));
+    for (Index i = 0; i + 1 < u[k].size(); ++i)
+      u[k](i) = arc.fraction(fits[k].u(i));
+  }
+  align_trailing_edges(u, te);
+  for (size_t k = 0; k < slices.size(); ++k)
+    fits[k] = refit_profile(points[k], u[k], fits[k].curve.ctrl.rows() - fits[k].curve.degree);
+  for (size_t k = 0; k < slices.size(); ++k)
+    r.sections.push_back(
+        fitted_section(fits[k], family.stations[k], points[k].rows(), options.samples));
   if (options.progress)
     options.progress("fitted " + std::to_string(r.sections.size()) + " sections");
-  r.loft = loft_sections(fitted_sections(r.sections), sliced_scan_loft_options());
-  r.section_gap = section_gap(r.sections, frames, r.loft);
+  r.loft = loft_fitted_curves(r.sections, prepared, std::move(notes));
+  if (!(r.loft.max_deviation <= kExactness * r.loft.bbox_diagonal))
+    throw std::runtime_error("fit_sliced_scan: the loft deviates from the fitted sections by " +
+                             std::to_string(r.loft.max_deviation) + "; refusing to continue");
+  r.section_gap = section_gap(r.sections, r.loft);
   if (options.progress)
     options.progress("lofted; fitted sections to the loft: " + std::to_string(r.section_gap));
   return r;
