@@ -354,8 +354,12 @@ void check_names(const std::string& option, const std::string& list,
   if (list == "all")
     return;
   for (const std::string& name : split(list))
-    if (std::find(known.begin(), known.end(), name) == known.end())
-      throw UsageError(option + ": unknown name '" + name + "'");
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string names;
+      for (const std::string& k : known)
+        names += (names.empty() ? "" : ",") + k;
+      throw UsageError(option + ": unknown name '" + name + "' (known: " + names + ")");
+    }
 }
 
 Options parse_options(int argc, char** argv) {
@@ -414,6 +418,7 @@ int main(int argc, char** argv) {
       {"slices", [] { return blade_slices(false, 30, 500, 0.005, 4); }},
       {"slices-noisy", [] { return blade_slices(false, 30, 500, 0.02, 5); }},
       {"radial", [] { return blade_slices(true, 30, 500, 0.005, 6); }},
+      {"radial-noisy", [] { return blade_slices(true, 30, 500, 0.02, 13); }},
       {"impeller", [&] { return model_cloud("impeller", points, 0, 7); }},
       {"uav", [&] { return model_cloud("uav", points, 0, 8); }},
       {"car", [&] { return model_cloud("car", points, 0, 9); }},
@@ -453,6 +458,14 @@ int main(int argc, char** argv) {
       std::cout << "; " << c.inward << " normals ("
                 << num(100.0 * double(c.inward) / double(c.cloud.points.rows()), 3)
                 << " %) point inward against the true ones";
+    if (c.sectioned()) {
+      const SliceFamily f = detect_slices(c.cloud.points);
+      std::cout << "; slices detected: " << f.members.size() << " ("
+                << (f.kind == SliceKind::planar   ? "planar"
+                    : f.kind == SliceKind::radial ? "radial"
+                                                  : "none")
+                << ", spread " << num(f.spread, 3) << " cm)";
+    }
     if (c.truth.F.rows() > 0)
       std::cout << "; truth: " << c.truth.F.rows() << " triangles, diagonal "
                 << num(c.truth.diagonal, 4) << ", its own sag " << num(c.truth.sag, 2);
