@@ -10,12 +10,20 @@
 //
 // Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R] [--depths D,D]
 //                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
+//                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor]
 // (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
 // inspection.)
 // (--methods: which of interlin (unstructured and, for slices, sectioned), PCL and Open3D run;
 // the summary's ratios need at least one Poisson; none: only the cases, e.g. to see how many
 // estimated normals point inward. An unknown option, method or case name, or a
 // malformed number, is a usage error: one line on stderr, exit 2.)
+// (--fit: one more interlin row per --fit, with these CloudFitOptions changed: support,
+// fit_ball, min_points, max_depth, noise (sigma in cm), noise_x (a multiple of estimate_noise's
+// sigma); for sweeps, docs/benchmarks.md "What limits the unstructured fit".)
+// (--diagnose: per method a line "distances:" with the quantiles of both distance directions in
+// units of the case's sigma and the share of the Chamfer from distances above 3 sigma.)
+// (--floor: per noisy case with a truth a line "floor:" with the noisy points' own distances to the
+// truth and the point-set Chamfer of the points and of their projections onto the truth.)
 
 #include "cloud_cases.h"
 #include "poisson_baselines.h"
@@ -23,6 +31,7 @@
 
 #include "interlin/reconstruction/clouds/cloud_implicit.h"
 #include "interlin/reconstruction/clouds/fit_sliced_scan.h"
+#include "interlin/reconstruction/clouds/noise_level.h"
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
 
@@ -30,6 +39,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -59,9 +69,11 @@ struct Method {
   enum Kind { interlin, pcl, open3d, sectioned } kind;
   int depth = 8;      // Poisson octree depth
   int resolution = 0; // interlin: grid cells along the box's longest side
+  std::string fit;    // interlin: CloudFitOptions changes (--fit), empty for the defaults
   std::string label() const {
     if (kind == interlin)
-      return "interlin (resolution " + std::to_string(resolution) + ")";
+      return "interlin (resolution " + std::to_string(resolution) + ")" +
+             (fit.empty() ? "" : " [" + fit + "]");
     if (kind == sectioned)
       return "interlin sectioned (slices -> loft)";
     return std::string(kind == pcl ? "PCL Poisson" : "Open3D Poisson") + " (depth " +
@@ -79,8 +91,57 @@ struct Result {
   double seconds = kNaN, peak_mb = kNaN;
   long vertices = 0, leaves = 0;
   double noise = kNaN;
+  // --diagnose: quantiles 50, 90, 99 % of mesh -> truth (A) and truth -> mesh (B) distances, and
+  // the share of the Chamfer from distances above kTail sigma
+  double qA[3] = {kNaN, kNaN, kNaN}, qB[3] = {kNaN, kNaN, kNaN}, tail_share = kNaN;
   char error[240] = {0};
 };
+
+constexpr double kTail = 3; // sigma: Gaussian noise exceeds it at 0.3 % of the points
+
+double quantile(Eigen::VectorXd d, double q) {
+  const auto k = static_cast<Index>(q * double(d.size() - 1));
+  std::nth_element(d.data(), d.data() + k, d.data() + d.size());
+  return d(k);
+}
+
+// CloudFitOptions from a --fit spec "KEY=V,KEY=V" (throws std::invalid_argument on a bad key or
+// value); noise_x needs the points (estimate_noise), null: only checked.
+CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* points) {
+  CloudFitOptions o;
+  std::stringstream in(spec);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const auto eq = item.find('=');
+    const std::string key = item.substr(0, eq);
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item.substr(eq == std::string::npos ? item.size() : eq + 1), &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (eq == std::string::npos || used != item.size() - eq - 1 || !(v > 0))
+      throw std::invalid_argument("--fit wants KEY=POSITIVE, not '" + item + "'");
+    if (key == "support")
+      o.support = v;
+    else if (key == "fit_ball")
+      o.fit_ball = v;
+    else if (key == "min_points")
+      o.min_points = static_cast<int>(v);
+    else if (key == "max_depth")
+      o.max_depth = static_cast<int>(v);
+    else if (key == "noise")
+      o.noise = v;
+    else if (key == "noise_x")
+      o.noise = points ? v * estimate_noise(*points) : v;
+    else
+      throw std::invalid_argument("--fit: unknown key '" + key +
+                                  "' (known: support, fit_ball, min_points, max_depth, noise, "
+                                  "noise_x)");
+  }
+  return o;
+}
 
 long status_kb(const char* key) {
   std::ifstream in("/proc/self/status");
@@ -118,7 +179,7 @@ void reconstruct_sectioned(const PointCloud& c, Reconstruction& r) {
 Reconstruction reconstruct(const Method& m, const PointCloud& c, int threads) {
   Reconstruction r;
   if (m.kind == Method::interlin) {
-    CloudFitOptions o;
+    CloudFitOptions o = fit_options(m.fit, &c.points);
     o.threads = threads;
     auto model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, o, &r.info));
     r.implicit = cloud_implicit_function(model);
@@ -178,6 +239,17 @@ void measure(const CloudCase& c, const MeshDistance& truth, const Eigen::MatrixX
   out.rms_cm = std::sqrt(dA.squaredNorm() / double(dA.size()));
   out.max_cm = dA.maxCoeff();
   out.hausdorff = std::max(dA.maxCoeff(), dB.maxCoeff()) / diag;
+  if (c.noise > 0) {
+    for (int k = 0; k < 3; ++k) {
+      const double q = std::array<double, 3>{0.5, 0.9, 0.99}[size_t(k)];
+      out.qA[k] = quantile(dA, q) / c.noise;
+      out.qB[k] = quantile(dB, q) / c.noise;
+    }
+    const double t = kTail * c.noise;
+    const double tail = (dA.array() > t).select(dA.array(), 0).sum() / double(dA.size()) +
+                        (dB.array() > t).select(dB.array(), 0).sum() / double(dB.size());
+    out.tail_share = tail / (dA.mean() + dB.mean());
+  }
   if (r.implicit.value) {
     const Eigen::VectorXd zA = truth(onto_zero_set(r.implicit, A));
     Eigen::VectorXd v(truth_samples.rows());
@@ -187,6 +259,37 @@ void measure(const CloudCase& c, const MeshDistance& truth, const Eigen::MatrixX
     out.zs_chamfer = 0.5 * (zA.mean() + zB.mean()) / diag;
     out.zs_hausdorff = std::max(zA.maxCoeff(), zB.maxCoeff()) / diag;
   }
+}
+
+std::string num(double x, int digits = 3) {
+  if (std::isnan(x))
+    return "–";
+  std::ostringstream s;
+  s.precision(digits);
+  s << x;
+  return s.str();
+}
+
+// --floor: what the points themselves score against the truth. The noisy points' mean distance
+// to the truth (about 0.8 sigma for Gaussian noise), and the point-set Chamfer (the mean of the
+// points' distances to the truth and of the truth samples' distances to the nearest point) of
+// the noisy points and of their projections onto the truth: a perfect denoiser that outputs
+// points still scores the latter, the sampling term; a surface does not (docs/benchmarks.md).
+std::string noise_floor(const CloudCase& c) {
+  const double diag = c.truth.diagonal;
+  const MeshDistance truth(c.truth.V, c.truth.F);
+  const Eigen::MatrixX3d samples =
+      in_range(c, sample_mesh(c.truth.V, c.truth.F, kSamples, 98).points);
+  const Eigen::MatrixX3d P = in_range(c, c.cloud.points);
+  const double to_truth = truth(P).mean();
+  const double noisy = 0.5 * (to_truth + PointSetDistance(P)(samples).mean());
+  const double gap = PointSetDistance(truth.closest(P))(samples).mean();
+  std::ostringstream s;
+  s << "\nfloor: points -> truth mean " << num(to_truth / diag) << " (" << num(to_truth / c.noise)
+    << " sigma); point-set Chamfer of the noisy points " << num(noisy / diag)
+    << ", of their projections onto the truth " << num(0.5 * gap / diag)
+    << " (truth -> nearest projection mean " << num(gap / c.noise) << " sigma)\n";
+  return s.str();
 }
 
 // Ten-fold hold-out for a cloud without a truth: distance of each held-out point to the surface
@@ -271,7 +374,8 @@ Result run_worker(const std::string& self, const std::string& case_file, const M
                                       std::to_string(m.depth),
                                       std::to_string(m.resolution),
                                       std::to_string(threads),
-                                      std::to_string(fd[1])};
+                                      std::to_string(fd[1]),
+                                      m.fit.empty() ? "-" : m.fit};
   const pid_t pid = fork();
   if (pid == 0) {
     close(fd[0]);
@@ -297,19 +401,10 @@ Result run_worker(const std::string& self, const std::string& case_file, const M
 int worker(char** argv) {
   const CloudCase c = load_case(argv[2]);
   const Method m{static_cast<Method::Kind>(std::stoi(argv[3])), std::stoi(argv[4]),
-                 std::stoi(argv[5])};
+                 std::stoi(argv[5]), std::string(argv[8]) == "-" ? "" : argv[8]};
   const int threads = std::stoi(argv[6]), fd = std::stoi(argv[7]);
   const Result r = run_child(m, c, threads);
   return write(fd, &r, sizeof r) == sizeof r ? 0 : 1;
-}
-
-std::string num(double x, int digits = 3) {
-  if (std::isnan(x))
-    return "–";
-  std::ostringstream s;
-  s.precision(digits);
-  s << x;
-  return s.str();
 }
 
 std::vector<std::string> split(const std::string& s) {
@@ -329,6 +424,8 @@ struct Options {
   std::string cases = "all", methods = "all";
   int points = 100000, resolution = 256, threads = 2;
   std::vector<int> depths{8, 9};
+  std::vector<std::string> fits; // --fit, one interlin row each
+  bool diagnose = false, floor = false;
 };
 
 struct UsageError : std::runtime_error {
@@ -366,6 +463,11 @@ Options parse_options(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
+    if (a == "--diagnose" || a == "--floor") { // flags without a value
+      (a == "--floor" ? o.floor : o.diagnose) = true;
+      --i;
+      continue;
+    }
     if (i + 1 >= argc)
       throw UsageError(a + " wants a value");
     const std::string v = argv[i + 1];
@@ -381,7 +483,14 @@ Options parse_options(int argc, char** argv) {
       o.methods = v;
     else if (a == "--save")
       setenv(kSaveVariable, v.c_str(), 1);
-    else if (a == "--depths") {
+    else if (a == "--fit") {
+      try {
+        fit_options(v, nullptr);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+      o.fits.push_back(v);
+    } else if (a == "--depths") {
       o.depths.clear();
       for (const std::string& d : split(v))
         o.depths.push_back(positive(a, d));
@@ -393,7 +502,7 @@ Options parse_options(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  if (argc == 8 && std::string(argv[1]) == "--worker")
+  if (argc == 9 && std::string(argv[1]) == "--worker")
     return worker(argv);
   const std::string self = "/proc/self/exe";
   Options o;
@@ -415,6 +524,13 @@ int main(int argc, char** argv) {
       {"blade", [&] { return blade_unstructured(points, 0.005, 0, 1); }},
       {"blade-noisy", [&] { return blade_unstructured(points, 0.02, 0, 2); }},
       {"blade-hole", [&] { return blade_unstructured(points, 0.005, 0.75, 3); }},
+      {"blade-oriented",
+       [&] { return blade_unstructured(points, 0.005, 0, 1, Normals::oriented); }},
+      {"blade-noisy-oriented",
+       [&] { return blade_unstructured(points, 0.02, 0, 2, Normals::oriented); }},
+      {"blade-clean", [&] { return blade_unstructured(points, 0, 0, 1, Normals::exact); }},
+      {"blade-exact", [&] { return blade_unstructured(points, 0.005, 0, 1, Normals::exact); }},
+      {"blade-noisy-exact", [&] { return blade_unstructured(points, 0.02, 0, 2, Normals::exact); }},
       {"slices", [] { return blade_slices(false, 30, 500, 0.005, 4); }},
       {"slices-noisy", [] { return blade_slices(false, 30, 500, 0.02, 5); }},
       {"radial", [] { return blade_slices(true, 30, 500, 0.005, 6); }},
@@ -479,14 +595,16 @@ int main(int argc, char** argv) {
     std::vector<Method> methods;
     if (run_method("interlin")) {
       if (c.sectioned())
-        methods.push_back({Method::sectioned, 0, 0});
-      methods.push_back({Method::interlin, 0, resolution});
+        methods.push_back({Method::sectioned, 0, 0, ""});
+      methods.push_back({Method::interlin, 0, resolution, ""});
+      for (const std::string& fit : o.fits)
+        methods.push_back({Method::interlin, 0, resolution, fit});
     }
     for (int d : depths) {
       if (run_method("pcl"))
-        methods.push_back({Method::pcl, d, 0});
+        methods.push_back({Method::pcl, d, 0, ""});
       if (run_method("open3d"))
-        methods.push_back({Method::open3d, d, 0});
+        methods.push_back({Method::open3d, d, 0, ""});
     }
     double best = kNaN, best_time = kNaN, ours = kNaN, our_time = kNaN;
     std::string best_label;
@@ -499,12 +617,18 @@ int main(int argc, char** argv) {
                 << num(r.holdout_max) << " | " << num(r.seconds) << " | " << num(r.peak_mb) << " | "
                 << r.vertices << (r.error[0] ? std::string(" | ") + r.error : "") << " |\n";
       std::cout.flush();
+      if (o.diagnose && !std::isnan(r.tail_share))
+        notes << "\ndistances: " << m.label() << ": mesh -> truth p50/p90/p99 " << num(r.qA[0])
+              << " / " << num(r.qA[1]) << " / " << num(r.qA[2]) << " sigma, truth -> mesh "
+              << num(r.qB[0]) << " / " << num(r.qB[1]) << " / " << num(r.qB[2])
+              << " sigma; Chamfer share from distances > " << kTail << " sigma "
+              << num(100 * r.tail_share) << " %\n";
       if (m.kind == Method::sectioned && !std::isnan(r.rms_cm))
         notes << "\nsectioned: distance to the truth rms " << num(r.rms_cm / c.noise)
               << " sigma, max " << num(r.max_cm / c.noise) << " sigma; fitted sections to "
               << "the loft " << num(r.section_gap) << " cm (noise used " << num(r.noise)
               << " cm)\n";
-      if (m.kind == (c.sectioned() ? Method::sectioned : Method::interlin)) {
+      if (m.kind == (c.sectioned() ? Method::sectioned : Method::interlin) && m.fit.empty()) {
         ours = score;
         our_time = r.seconds;
       } else if ((m.kind == Method::pcl || m.kind == Method::open3d) && !std::isnan(score) &&
@@ -515,6 +639,8 @@ int main(int argc, char** argv) {
       }
     }
     std::cout << notes.str();
+    if (o.floor && c.truth.F.rows() > 0 && c.noise > 0)
+      std::cout << noise_floor(c);
     std::remove(case_file.c_str());
     summary << "| " << c.name << " | " << best_label << " | " << num(best) << " | "
             << num(best_time) << " | " << num(ours) << " | " << num(ours / best, 2) << " | "

@@ -124,8 +124,10 @@ void add_noise(PointCloud& c, double sigma, unsigned seed) {
 
 // What an unstructured scan gives every method: points only; normals from prepare_cloud.
 // `inward`: how many of those normals point against the scan's true normals (prepare_cloud
-// keeps the points' order, so the kept points are matched as a subsequence).
-PointCloud prepared(const std::string& name, const PointCloud& scan, Index& inward) {
+// keeps the points' order, so the kept points are matched as a subsequence); with `orient` they
+// are flipped (an oracle orientation, for the bench's experiments).
+PointCloud prepared(const std::string& name, const PointCloud& scan, Index& inward,
+                    bool orient = false) {
   PointCloud p;
   p.points = scan.points;
   CloudPrepOptions o;
@@ -134,8 +136,11 @@ PointCloud prepared(const std::string& name, const PointCloud& scan, Index& inwa
   for (Index i = 0, j = 0; i < p.points.rows(); ++i, ++j) {
     while (j < scan.points.rows() && scan.points.row(j) != p.points.row(i))
       ++j;
-    if (j < scan.points.rows() && p.normals.row(i).dot(scan.normals.row(j)) < 0)
+    if (j < scan.points.rows() && p.normals.row(i).dot(scan.normals.row(j)) < 0) {
       ++inward;
+      if (orient)
+        p.normals.row(i) *= -1;
+    }
   }
   return p;
 }
@@ -181,18 +186,25 @@ PointCloud sample_mesh(const MatrixXd& V, const Eigen::MatrixXi& F, int n, unsig
   return c;
 }
 
-CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed) {
+CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed, Normals normals) {
   const Blade& b = blade();
   CloudCase c;
   c.name = "rotor37 " + std::to_string(n / 1000) + "k sigma " + std::to_string(sigma).substr(0, 5) +
-           (hole > 0 ? " hole" : "");
+           (hole > 0 ? " hole" : "") +
+           (normals == Normals::exact      ? " exact normals"
+            : normals == Normals::oriented ? " oriented normals"
+                                           : "");
   c.description = std::to_string(n) + " points uniform by area on the capped loft, sigma " +
                   std::to_string(sigma) + " cm" +
                   (hole > 0 ? ", no points within " + std::to_string(hole) +
                                   " cm of a suction-side point at mid-span"
-                            : "");
+                            : "") +
+                  (normals == Normals::exact      ? ", the true normals"
+                   : normals == Normals::oriented ? ", estimated normals turned to the true side"
+                                                  : "");
   PointCloud scan = sample_blade(n, seed);
-  add_noise(scan, sigma, seed + 7);
+  if (sigma > 0)
+    add_noise(scan, sigma, seed + 7);
   if (hole > 0) {
     const Vector3d centre = evaluate(b.S, 0.25, 0.5);
     std::vector<Index> keep;
@@ -204,7 +216,12 @@ CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed) {
     k.normals = scan.normals(keep, Eigen::all);
     scan = k;
   }
-  c.cloud = prepared(c.name, scan, c.inward);
+  if (normals == Normals::exact) {
+    c.cloud = scan;
+    c.inward = 0;
+  } else {
+    c.cloud = prepared(c.name, scan, c.inward, normals == Normals::oriented);
+  }
   c.truth = b.truth;
   c.noise = sigma;
   return c;

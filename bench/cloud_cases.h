@@ -43,8 +43,13 @@ CloudCase load_case(const std::string& path);
 
 // Rotor 37 blade scanned without structure: n points uniform by area on the capped loft, noise
 // sigma (cm). hole > 0 removes the points within that distance of a suction-side point at
-// mid-span.
-CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed);
+// mid-span. Normals: prepare_cloud's (estimated), prepare_cloud's with each turned to the side
+// of the true normal (oriented: estimated directions, oracle orientation), or the true normals
+// at the points' noise-free positions (exact); the oracles separate the fit's error from the
+// normals' (docs/benchmarks.md "What limits the unstructured fit").
+enum class Normals { estimated, oriented, exact };
+CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed,
+                             Normals normals = Normals::estimated);
 
 // Rotor 37 blade scanned in `slices` planar sections x = const (radial: cylinders r = const about
 // the z axis) between hub and tip, `per_slice` points each, evenly spaced along the profile,

@@ -5,6 +5,8 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_3.h>
 #include <CGAL/Simple_cartesian.h>
 
 #include <vector>
@@ -16,6 +18,7 @@ using K = CGAL::Simple_cartesian<double>;
 using Triangles = std::vector<K::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+using Search = CGAL::Orthogonal_k_neighbor_search<CGAL::Search_traits_3<K>>;
 } // namespace
 
 struct MeshDistance::Impl {
@@ -46,6 +49,39 @@ Eigen::VectorXd MeshDistance::operator()(const Eigen::MatrixX3d& P) const {
   detail::parallel_for(static_cast<long>(P.rows()), 2, [&](long i, int) {
     d(i) = std::sqrt(impl_->tree.squared_distance(K::Point_3(P(i, 0), P(i, 1), P(i, 2))));
   });
+  return d;
+}
+
+Eigen::MatrixX3d MeshDistance::closest(const Eigen::MatrixX3d& P) const {
+  Eigen::MatrixX3d C(P.rows(), 3);
+  auto one = [&](long i) {
+    const K::Point_3 c = impl_->tree.closest_point(K::Point_3(P(i, 0), P(i, 1), P(i, 2)));
+    C.row(i) << c.x(), c.y(), c.z();
+  };
+  if (P.rows() > 0) // builds the search structure, as in operator()
+    one(0);
+  detail::parallel_for(static_cast<long>(P.rows()), 2, [&](long i, int) { one(i); });
+  return C;
+}
+
+struct PointSetDistance::Impl {
+  Search::Tree tree;
+};
+
+PointSetDistance::PointSetDistance(const Eigen::MatrixX3d& S) : impl_(std::make_unique<Impl>()) {
+  for (Eigen::Index i = 0; i < S.rows(); ++i)
+    impl_->tree.insert(K::Point_3(S(i, 0), S(i, 1), S(i, 2)));
+  impl_->tree.build();
+}
+
+PointSetDistance::~PointSetDistance() = default;
+
+Eigen::VectorXd PointSetDistance::operator()(const Eigen::MatrixX3d& P) const {
+  Eigen::VectorXd d(P.rows());
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const Search search(impl_->tree, K::Point_3(P(i, 0), P(i, 1), P(i, 2)), 1);
+    d(i) = std::sqrt(search.begin()->second);
+  }
   return d;
 }
 

@@ -14,6 +14,22 @@ public:
   ~MeshDistance();
   // Distance from every row of P (#P by 3) to the nearest point of the mesh (2 threads).
   Eigen::VectorXd operator()(const Eigen::MatrixX3d& P) const;
+  // The nearest point of the mesh to every row of P (#P by 3).
+  Eigen::MatrixX3d closest(const Eigen::MatrixX3d& P) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Distances to a point set (CGAL's kd-tree), for the point-set Chamfer of a cloud.
+class PointSetDistance {
+public:
+  // Inputs: S #S by 3 (copied)
+  explicit PointSetDistance(const Eigen::MatrixX3d& S);
+  ~PointSetDistance();
+  // Distance from every row of P (#P by 3) to the nearest row of S.
+  Eigen::VectorXd operator()(const Eigen::MatrixX3d& P) const;
 
 private:
   struct Impl;
