@@ -34,8 +34,9 @@ struct SurfaceFoot {
 // Method: Newton on f = |S - p|^2 / 2 with the exact Hessian (S_u.S_u + S_uu.r, ...) where it is
 // positive definite, Gauss-Newton otherwise; a coordinate on its bound whose step points out of
 // the domain is held (active set) and the other one takes its 1-D Newton step; halving line
-// search on f. Stops when the foot moves less than 1e-15 x (|p| + 1) or f stops decreasing.
-// Output: a local minimum of the distance (the nearest foot when the start is in its basin).
+// search on f, a step that turns S_u by more than 45 degrees halved too. Stops when the foot moves
+// less than 1e-15 x (|p| + 1) or f stops decreasing. Output: a local minimum of the distance (the
+// nearest foot when the start is in its basin).
 SurfaceFoot surface_foot(const PiecewiseSurface& S, const Eigen::Vector3d& p, double u, double v,
                          int max_iterations = 50);
 
@@ -93,6 +94,11 @@ SurfaceFoot surface_foot(const JetFn& jet, const Eigen::Vector4d& dom, bool clos
       const SurfaceJet Jn = jet(un, vn);
       const Eigen::Vector3d rn = Jn.S - p;
       const double fn = 0.5 * rn.squaredNorm();
+      // A step may turn S_u by 45 degrees at most: a longer one can leap round a thin edge (a
+      // blade's trailing edge) onto the other sheet's local minimum, which the test on f accepts
+      // when that sheet is nearer than the start. (S_v may reverse: folds between sections.)
+      if (J.Su.dot(Jn.Su) < std::cos(M_PI / 4) * J.Su.norm() * Jn.Su.norm())
+        continue;
       // Near the minimum f changes below its own round-off: accept such steps too.
       if (fn <= f + 1e-13 * f + 1e-300) {
         const double step = (Jn.S - J.S).norm();
