@@ -81,8 +81,10 @@ bool complete_starts(const BodyPatches& B, std::vector<PatchSeed>& seeds, const 
 // Boundary samples that every start set must serve: a grid on the side (nu x nv) and on the
 // caps' interiors, refined along rows and columns wherever neighbouring samples' normals turn
 // by more than 30 degrees (sharp trailing edges, the turn of a fold), by halving down to 1e-7 of
-// the parameter range; plus 16 extra rows inside each end's fold region.
-std::vector<PatchSeed> boundary_samples(const BodyPatches& B, int nu, int nv) {
+// the parameter range; plus 16 extra rows inside each end's fold region. `edge` receives the
+// refined samples (where the side turns sharply).
+std::vector<PatchSeed> boundary_samples(const BodyPatches& B, int nu, int nv,
+                                        std::vector<PatchSeed>& edge) {
   const PiecewiseSurface& S = B.patches[0];
   const Eigen::Vector4d dom = domain(S);
   const auto normal = [&](double u, double v) {
@@ -96,6 +98,7 @@ std::vector<PatchSeed> boundary_samples(const BodyPatches& B, int nu, int nv) {
           return;
         const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
         out.push_back({0, um, vm});
+        edge.push_back({0, um, vm});
         refine(u0, v0, um, vm, depth + 1);
         refine(um, vm, u1, v1, depth + 1);
       };
@@ -137,6 +140,66 @@ std::vector<PatchSeed> boundary_samples(const BodyPatches& B, int nu, int nv) {
   return out;
 }
 
+// The side's sample grid (boundary_samples): 1024 points round each of 128 rows.
+constexpr int kSampleU = 1024, kSampleV = 128;
+// Random boundary points per round of cover_random_points.
+constexpr long kRandomPoints = 100000;
+
+// kRandomPoints random boundary points: side 60 % (u, v uniform), each cap 20 % (s, t uniform).
+std::vector<PatchSeed> uniform_boundary_points(const BodyPatches& B, int round) {
+  std::mt19937_64 rng(1234 + static_cast<unsigned>(round));
+  std::uniform_real_distribution<double> U(0, 1);
+  const Eigen::Vector4d dom = domain(B.patches[0]);
+  std::vector<PatchSeed> out;
+  for (long i = 0; i < kRandomPoints; ++i) {
+    const int patch = i % 5 == 0 ? 1 : i % 5 == 1 ? 2 : 0;
+    PatchSeed at{patch, U(rng), U(rng)};
+    if (patch == 0)
+      at.v = dom(2) + (dom(3) - dom(2)) * at.v;
+    out.push_back(at);
+  }
+  return out;
+}
+
+// kRandomPoints random side points near the sharp edges: each within two sample columns and
+// one sample row of an edge sample (boundary_samples), where a cell may hold a sliver of the
+// edge's other sheet that no sample reaches.
+std::vector<PatchSeed> edge_boundary_points(const BodyPatches& B,
+                                            const std::vector<PatchSeed>& edge, int round) {
+  if (edge.empty())
+    return {};
+  std::mt19937_64 rng(4321 + static_cast<unsigned>(round));
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::uniform_int_distribution<size_t> pick(0, edge.size() - 1);
+  const Eigen::Vector4d dom = domain(B.patches[0]);
+  const double du = 2.0 / kSampleU, dv = (dom(3) - dom(2)) / (kSampleV - 1);
+  std::vector<PatchSeed> out;
+  for (long i = 0; i < kRandomPoints; ++i) {
+    const PatchSeed& e = edge[pick(rng)];
+    const double u = e.u + du * U(rng);
+    out.push_back({0, u - std::floor(u), std::clamp(e.v + dv * U(rng), dom(2), dom(3))});
+  }
+  return out;
+}
+
+// Gives every boundary point `at` whose cell's starts (start_set(p)) do not find it (|omega| >
+// 1e-13 x diagonal) its own start. Returns how many needed one.
+long cover_random_points(const BodyPatches& B, const std::vector<PatchSeed>& points,
+                         const std::function<std::vector<PatchSeed>&(const Vector3d&)>& start_set,
+                         double diag) {
+  long misses = 0;
+  for (const PatchSeed& at : points) {
+    const Vector3d p = evaluate(B, at);
+    std::vector<PatchSeed>& st = start_set(p);
+    const BodyDistance near = body_distance(B, p, st.data(), static_cast<int>(st.size()));
+    if (!near.found || std::abs(near.distance) > 1e-13 * diag) {
+      st.push_back(at);
+      ++misses;
+    }
+  }
+  return misses;
+}
+
 // The options' rules (build_section_body).
 void check_body_options(const SectionBodyOptions& o) {
   if (o.resolution < 8 || o.resolution > 1024)
@@ -176,7 +239,8 @@ SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOpt
   const BodyProjection proj(B);
 
   // Box and grid.
-  const std::vector<PatchSeed> samples = boundary_samples(B, 1024, 128);
+  std::vector<PatchSeed> edge_samples;
+  const std::vector<PatchSeed> samples = boundary_samples(B, kSampleU, kSampleV, edge_samples);
   Eigen::AlignedBox3d bbox;
   for (const PatchSeed& at : samples)
     bbox.extend(evaluate(B, at));
@@ -324,32 +388,19 @@ SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOpt
       s.push_back(at);
   }
 
-  // Random boundary points: each one its start finds not gets its own (two rounds, the second
-  // one counted: rare points between the samples, in folds or at sharp edges).
-  for (int round = 0; round < 2; ++round) {
-    std::mt19937_64 rng(1234 + static_cast<unsigned>(round));
-    std::uniform_real_distribution<double> U(0, 1);
-    const Eigen::Vector4d dom = domain(B.patches[0]);
-    long misses = 0;
-    const long n = 100000;
-    for (long i = 0; i < n; ++i) {
-      const int patch = i % 5 == 0 ? 1 : i % 5 == 1 ? 2 : 0;
-      PatchSeed at{patch, U(rng), U(rng)};
-      if (patch == 0)
-        at.v = dom(2) + (dom(3) - dom(2)) * at.v;
-      const Vector3d p = evaluate(B, at);
-      const long c = C.cell_of(p);
-      if (c < 0 || slot[static_cast<size_t>(c)] < 0)
-        throw std::runtime_error("section body: a boundary point lies outside the band cells");
-      std::vector<PatchSeed>& st = starts[static_cast<size_t>(slot[static_cast<size_t>(c)])];
-      const BodyDistance near = body_distance(B, p, st.data(), static_cast<int>(st.size()));
-      if (!near.found || std::abs(near.distance) > 1e-13 * diag) {
-        st.push_back(at);
-        ++misses;
-      }
-    }
-    R.boundary_misses = misses;
-  }
+  // Random boundary points: each one its starts do not find gets its own start (rare points
+  // between the samples: in folds, or on a thin edge's other sheet when a cell holds only a
+  // sliver of it). Uniform rounds over the whole boundary, then rounds near the sharp edges.
+  const auto start_set = [&](const Vector3d& p) -> std::vector<PatchSeed>& {
+    const long c = C.cell_of(p);
+    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
+      throw std::runtime_error("section body: a boundary point lies outside the band cells");
+    return starts[static_cast<size_t>(slot[static_cast<size_t>(c)])];
+  };
+  for (int round = 0; round < 2; ++round)
+    R.boundary_misses = cover_random_points(B, uniform_boundary_points(B, round), start_set, diag);
+  for (int round = 0; round < 2; ++round)
+    cover_random_points(B, edge_boundary_points(B, edge_samples, round), start_set, diag);
 
   // Validation on independent points (failures get their own start as well).
   if (o.checks_per_cell > 0) {
