@@ -7,7 +7,8 @@
 // decides within 1e-3 x diagonal of the boundary, where the mesh's chords differ from the
 // surface), max |omega - signed distance| over those points, and the range of |omega| / delta on
 // normal offsets (outside 0.1 % to 5 % of the diagonal, inside up to a quarter of the local
-// thickness). The checks assert the targets.
+// thickness along the normal; an inside offset past the medial surface is measured against the
+// exact distance, see inside_offset_ratios). The checks assert the targets.
 #include "interlin/reconstruction/implicit/body_projection.h"
 #include "interlin/reconstruction/implicit/section_body_build.h"
 #include "interlin/reconstruction/meshing/ray_cast.h"
@@ -83,15 +84,17 @@ void measure(const std::string& name, const std::vector<Section>& sections) {
     din(i) = Q(rng) * thick(i);
   const Eigen::VectorXd wo =
       -omega(f, foot + (normal.array().colwise() * dout.array()).matrix()).cwiseQuotient(dout);
-  const Eigen::VectorXd wi =
-      omega(f, foot - (normal.array().colwise() * din.array()).matrix()).cwiseQuotient(din);
+  const test::InsideOffsetRatios inside = test::inside_offset_ratios(
+      f, proj, foot - (normal.array().colwise() * din.array()).matrix(), din);
+  const Eigen::VectorXd& wi = inside.ratio;
   std::printf("%s: diagonal %.6g; |omega| max %.3g (input points), %.3g (1e5 boundary points) = "
               "%.3g x diagonal; sign: %ld of %ld wrong vs ray parity, %ld wrong vs exact within "
               "1e-3 x diagonal; max |omega - d| %.3g = %.3g x diagonal; |omega|/delta outside "
-              "[%.6f, %.6f], inside [%.6f, %.6f]\n",
+              "[%.6f, %.6f], inside [%.6f, %.6f] (%d of %d inside offsets past the medial "
+              "surface, against the exact distance)\n",
               name.c_str(), diag, input, boundary, std::max(input, boundary) / diag, wrong_parity,
               by_parity, wrong_exact, max_err, max_err / diag, wo.minCoeff(), wo.maxCoeff(),
-              wi.minCoeff(), wi.maxCoeff());
+              wi.minCoeff(), wi.maxCoeff(), inside.by_exact, n);
   CHECK(std::max(input, boundary) <= 1e-12 * diag);
   CHECK(wrong_parity == 0);
   CHECK(wrong_exact == 0);
