@@ -46,3 +46,19 @@ def test_study_writes_csv_png_and_report(tmp_path, name):
     assert glob.glob(str(tmp_path / "*.csv"))
     assert all((tmp_path / t).exists() for t in tables)
     assert not glob.glob(str(tmp_path / "tmp*")), "temporary files left behind"
+
+
+def test_cloud_study_report_from_its_saved_bench_outputs(tmp_path):
+    """The committed cloud study (docs/studies/cloud_reconstruction) re-made from its saved
+    bench_clouds outputs (raw/, reused by --resume, so no bench runs): the same report, CSV
+    and verdict, byte for byte."""
+    saved = os.path.join(ROOT, "docs", "studies", "cloud_reconstruction")
+    shutil.copytree(os.path.join(saved, "raw"), tmp_path / "raw")
+    cmd = [sys.executable, os.path.join(ROOT, "studies", "cloud_reconstruction.py"),
+           str(tmp_path), "--resume", "--threads", "1", "--bench", sys.executable, "-q"]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    for name in ("report.md", "summary.csv", "methods.csv"):
+        with open(os.path.join(saved, name)) as a, open(tmp_path / name) as b:
+            assert a.read() == b.read(), name
+    assert "met on 0 of 13 clouds" in (tmp_path / "report.md").read_text()
