@@ -142,8 +142,10 @@ std::vector<PatchSeed> boundary_samples(const BodyPatches& B, int nu, int nv,
 
 // The side's sample grid (boundary_samples): 1024 points round each of 128 rows.
 constexpr int kSampleU = 1024, kSampleV = 128;
-// Random boundary points per round of cover_random_points.
-constexpr long kRandomPoints = 100000;
+// Random points per round of cover_random_points: over the whole boundary, and near the sharp
+// edges (a small area: 20,000 per round leave 0 misses in 400,000 test points, see
+// tests/reconstruction/implicit/measure_section_body.cpp).
+constexpr long kRandomPoints = 100000, kEdgePoints = 20000;
 
 // kRandomPoints random boundary points: side 60 % (u, v uniform), each cap 20 % (s, t uniform).
 std::vector<PatchSeed> uniform_boundary_points(const BodyPatches& B, int round) {
@@ -161,7 +163,7 @@ std::vector<PatchSeed> uniform_boundary_points(const BodyPatches& B, int round) 
   return out;
 }
 
-// kRandomPoints random side points near the sharp edges: each within two sample columns and
+// kEdgePoints random side points near the sharp edges: each within two sample columns and
 // one sample row of an edge sample (boundary_samples), where a cell may hold a sliver of the
 // edge's other sheet that no sample reaches.
 std::vector<PatchSeed> edge_boundary_points(const BodyPatches& B,
@@ -174,7 +176,7 @@ std::vector<PatchSeed> edge_boundary_points(const BodyPatches& B,
   const Eigen::Vector4d dom = domain(B.patches[0]);
   const double du = 2.0 / kSampleU, dv = (dom(3) - dom(2)) / (kSampleV - 1);
   std::vector<PatchSeed> out;
-  for (long i = 0; i < kRandomPoints; ++i) {
+  for (long i = 0; i < kEdgePoints; ++i) {
     const PatchSeed& e = edge[pick(rng)];
     const double u = e.u + du * U(rng);
     out.push_back({0, u - std::floor(u), std::clamp(e.v + dv * U(rng), dom(2), dom(3))});
