@@ -60,20 +60,22 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
       throw UsageError("--margin: expected a number in [0, 1), got " + a.get("margin"));
   }
   if (a.has("boundary")) {
-    if (o.elements == VolumeElements::hexahedra)
-      throw UsageError("--boundary applies to --volume tet (hexahedra always use the projected "
-                       "layer)");
-    o.boundary = parse_choice("boundary", a.get("boundary"), {"cut", "projected"}) == "cut"
-                     ? VolumeBoundary::cut
-                     : VolumeBoundary::projected;
+    const bool hex = o.elements == VolumeElements::hexahedra;
+    const std::string b = hex ? parse_choice("boundary", a.get("boundary"), {"projected", "dual"})
+                              : parse_choice("boundary", a.get("boundary"), {"cut", "projected"});
+    o.boundary = b == "cut"         ? VolumeBoundary::cut
+                 : b == "projected" ? VolumeBoundary::projected
+                                    : VolumeBoundary::dual;
   }
+  if (a.has("margin") && o.boundary == VolumeBoundary::dual)
+    throw UsageError("--margin applies to the projected layer, not --boundary dual");
   if (a.has("margin") && o.elements == VolumeElements::tetrahedra &&
       o.boundary == VolumeBoundary::cut)
     throw UsageError("--margin applies to the projected layer (--boundary projected or --volume "
                      "hex)");
   if (a.has("seed-rule")) { // seed 003's published configurations
-    if (a.has("boundary") && o.boundary == VolumeBoundary::cut)
-      throw UsageError("--seed-rule uses the projected layer, not --boundary cut");
+    if (a.has("boundary") && o.boundary != VolumeBoundary::projected)
+      throw UsageError("--seed-rule uses the projected layer, not --boundary " + a.get("boundary"));
     o.boundary = VolumeBoundary::projected;
     o.margin = 0;
     o.rule = o.elements == VolumeElements::hexahedra ? ZeroRule::inclusive : ZeroRule::strict;
@@ -174,12 +176,16 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
               << fmt(info.coverage.body, 7) << " on the grid clipped at F = 0)\n";
 }
 
-// The fix for a projected layer that leaves out more than kLostVolumeWarning of the body: a cell
-// at which walls as thick as the lost ones keep inner cells, or the clipped grid.
-std::string lost_volume_fix(const VolumeMeshInfo& info, bool tets) {
+// The fix for a mesh that leaves out more than kLostVolumeWarning of the body: a cell at which
+// walls as thick as the lost ones keep inner cells (dual hexahedra: grid nodes), or the clipped
+// grid.
+std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions& o) {
+  const bool tets = o.elements == VolumeElements::tetrahedra;
   return "walls about " + fmt(info.coverage.thickness(), 3) +
-         " thick have no inner cell under the boundary layer: use --cell " +
-         fmt(info.suggested_cell, 2) + " or smaller, or " +
+         (o.boundary == VolumeBoundary::dual ? " thick hold no grid node"
+                                             : " thick have no inner cell under the boundary "
+                                               "layer") +
+         ": use --cell " + fmt(info.suggested_cell, 2) + " or smaller, or " +
          (tets ? "--boundary cut" : "--volume tet");
 }
 
@@ -203,12 +209,11 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   o.progress = progress;
   VolumeMeshInfo info;
   VolumeMesh m = volume_mesh(f, o, &info);
-  const bool tets = o.elements == VolumeElements::tetrahedra;
   if (m.C.rows() == 0)
     throw_input_error(r.input, 0,
                       "no volume mesh: no grid cell lies inside the body (" +
                           (info.coverage.body > 0
-                               ? lost_volume_fix(info, tets)
+                               ? lost_volume_fix(info, o)
                                : std::string("refine the grid with --resolution or --cell, or "
                                              "check the box")) +
                           ")");
@@ -230,7 +235,7 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   print_summary(r, m, info, q, o);
   if (!r.quiet && info.lost_fraction() > kLostVolumeWarning)
     std::cerr << "warning: the mesh leaves out " << fmt(100 * info.lost_fraction(), 2)
-              << " % of the body's volume (" << lost_volume_fix(info, tets) << ")\n";
+              << " % of the body's volume (" << lost_volume_fix(info, o) << ")\n";
   if (a.has("adapt")) {
     std::cout << "  adapted      " << passes.size() << " passes, " << before << " -> " << m.C.rows()
               << " tetrahedra (flagged";

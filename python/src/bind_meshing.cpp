@@ -58,14 +58,14 @@ py::dict volume_info_dict(const VolumeMeshInfo& i) {
 }
 
 // A UserWarning when the projected layer leaves out more than kLostVolumeWarning of the body.
-void warn_lost_volume(const VolumeMeshInfo& i, bool tets) {
+void warn_lost_volume(const VolumeMeshInfo& i, bool tets, bool dual) {
   if (!(i.lost_fraction() > kLostVolumeWarning))
     return;
   const std::string m =
       "mesh_volume: the mesh leaves out " + std::to_string(100 * i.lost_fraction()) +
       " % of the body's volume (walls about " + std::to_string(i.coverage.thickness()) +
-      " thick have no inner cell under the boundary layer): use cell=" +
-      std::to_string(i.suggested_cell) + " or smaller, or " +
+      (dual ? " thick hold no grid node" : " thick have no inner cell under the boundary layer") +
+      "): use cell=" + std::to_string(i.suggested_cell) + " or smaller, or " +
       (tets ? "boundary='cut'" : "elements='tet'");
   if (PyErr_WarnEx(PyExc_UserWarning, m.c_str(), 1) != 0)
     throw py::error_already_set();
@@ -180,9 +180,10 @@ void bind_volume_meshes(py::module_& m) {
         o.elements = choice<VolumeElements>(
             {{"tet", VolumeElements::tetrahedra}, {"hex", VolumeElements::hexahedra}}, elements,
             "elements");
-        o.boundary = choice<VolumeBoundary>(
-            {{"cut", VolumeBoundary::cut}, {"projected", VolumeBoundary::projected}}, boundary,
-            "boundary");
+        o.boundary = choice<VolumeBoundary>({{"cut", VolumeBoundary::cut},
+                                             {"projected", VolumeBoundary::projected},
+                                             {"dual", VolumeBoundary::dual}},
+                                            boundary, "boundary");
         o.rule = choice<ZeroRule>(
             {{"strict", ZeroRule::strict}, {"inclusive", ZeroRule::inclusive}}, rule, "rule");
         if (box)
@@ -195,7 +196,8 @@ void bind_volume_meshes(py::module_& m) {
           py::gil_scoped_release release;
           v = volume_mesh(f, o, &info);
         }
-        warn_lost_volume(info, o.elements == VolumeElements::tetrahedra);
+        warn_lost_volume(info, o.elements == VolumeElements::tetrahedra,
+                         o.boundary == VolumeBoundary::dual);
         return py::make_tuple(std::move(v.V), std::move(v.C), std::move(v.B),
                               boundary_flags(v.boundary), volume_info_dict(info));
       },
@@ -207,7 +209,9 @@ void bind_volume_meshes(py::module_& m) {
 --volume): background cells inside, a boundary layer projected onto F = 0, smoothing ->
 (V (N, 3), C (E, 4) tetrahedra or (E, 8) hexahedra (VTK order) int32, B (K, 3 or 4) boundary
 facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetrahedra) "cut" (the
-grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer, as hexahedra always);
+grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer, as hexahedra by default);
+hexahedra "dual": one per inside grid node, corners at the cells' points on F = 0 (Zhang & Bajaj
+2006: walls one node layer thick kept; "tet" with "dual" raises ValueError);
 rule "strict" (F > eps) or "inclusive" (F >= -eps) for the inside nodes; margin: inside nodes
 within margin x cell of F = 0 count as outside (no thin layer elements). info["held"]: layer
 nodes held short of F = 0 so that no element folds (max_boundary_f is over the others);

@@ -154,6 +154,15 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
   CHECK(none.status == 1);
   CHECK_THAT(none.err, Catch::Contains("no grid cell lies inside the body (walls about") &&
                            Catch::Contains("or --volume tet)"));
+  // Dual hexahedra keep the wall's node layers (measured: 6.0 % left out where the wall holds no
+  // node) and the warning says so.
+  const Run dual = run(mesh + "hex --cell 0.05 --boundary dual");
+  REQUIRE(dual.status == 0);
+  CHECK_THAT(dual.out, Catch::Contains("inverted 0\n"));
+  const size_t c = dual.out.find("coverage     ");
+  REQUIRE(c != std::string::npos);
+  CHECK(std::stod(dual.out.substr(c + 13)) < 10);
+  CHECK_THAT(dual.err, Catch::Contains("thick hold no grid node: use --cell"));
   // The clipped grid (default tetrahedra) loses nothing: no coverage line.
   const Run cut = run(mesh + "tet --cell 0.05 -q");
   CHECK(cut.status == 0);

@@ -2,6 +2,7 @@
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 
 #include "interlin/reconstruction/meshing/cut_tetrahedra.h"
+#include "interlin/reconstruction/meshing/dual_hexahedra.h"
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
 
 #include "parallel.h"
@@ -321,10 +322,12 @@ double max_boundary_value(const ImplicitFunction& f, const VolumeMesh& vm,
 // boundary surface, then (15) over the interior. Before the interior moves, a projected layer's
 // nodes of folded elements are held short of F = 0 (hold_folded_layer), and interior moves that
 // fold an element are undone; a cut boundary has no folds (its nodes stay on their grid edges).
-// Sets held and the largest |F| at a boundary node not held.
+// Sets held and the largest |F| at a boundary node not held. Dual hexahedra pass the nodes they
+// held (`held`, #V) and are treated like a projected layer otherwise.
 void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOptions& o,
-                     const ProjectedLayer* layer, VolumeMesh& vm, VolumeMeshInfo& out) {
-  const bool projected = layer != nullptr;
+                     const ProjectedLayer* layer, VolumeMesh& vm, VolumeMeshInfo& out,
+                     std::vector<char> held = {}) {
+  const bool projected = layer != nullptr || !held.empty();
   auto say = [&](const std::string& m) {
     if (o.progress)
       o.progress(m);
@@ -355,8 +358,7 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
     if (!projected) // the projected layer's folds are held below
       restore_folded(before, vm.boundary, vm.C, vm.V);
   }
-  std::vector<char> held;
-  if (projected) // a valid mesh before the interior moves
+  if (layer != nullptr) // a valid mesh before the interior moves
     out.held = hold_folded_layer(vm.C, *layer, h, vm.V, held);
   if (o.interior_sweeps > 0) {
     say("smoothing the interior, " + std::to_string(o.interior_sweeps) + " sweeps (functional 15)");
@@ -391,6 +393,58 @@ VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g, Eigen::Vect
   vm.boundary.assign(size_t(vm.V.rows()), 0);
   for (long i = 0; i < vm.B.size(); ++i)
     vm.boundary[size_t(vm.B.data()[i])] = 1;
+  return vm;
+}
+
+// The part of the body (the grid clipped at F = 0, zero sheets filled in `whole`) that no element
+// of vm covers, and the cell that would keep walls as thick as the lost ones.
+void measure_coverage(const ImplicitFunction& f, const RegularGrid& g, const Eigen::VectorXd& whole,
+                      const VolumeMeshOptions& o, const VolumeMesh& vm, double cells_across_wall,
+                      VolumeMeshInfo& out) {
+  if (o.progress)
+    o.progress("measuring the volume the mesh leaves out (the grid clipped at F = 0)");
+  const CutTetrahedra body = cut_tetrahedra(f, g, whole, o.epsilon, o.threads);
+  out.coverage = uncovered_volume(body, g, vm.V, vm.C, o.threads);
+  out.suggested_cell = out.coverage.thickness() / cells_across_wall;
+}
+
+// Hexahedra dual to the inside nodes of g padded by a cell (dual_hexahedra), nodes on internal zero
+// sheets inside; then step (4) of volume_mesh with the held points fixed and the coverage.
+VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const VolumeMeshOptions& o,
+                     VolumeMeshInfo& out) {
+  RegularGrid g = g0; // a layer of cells around the box: every inside node gets its 8 cells
+  g.origin -= g.spacing;
+  g.nodes += 2;
+  out.grid = g;
+  if (o.progress)
+    o.progress("grid " + std::to_string(g.nodes(0)) + " x " + std::to_string(g.nodes(1)) + " x " +
+               std::to_string(g.nodes(2)) + " nodes, sampling F");
+  Eigen::VectorXd S;
+  sample_grid(f, g, S, o.threads);
+  fill_zero_sheets(g, S, o.epsilon, o.threads);
+  out.inside_nodes = (S.array() > o.epsilon).count();
+  if (o.progress)
+    o.progress("hexahedra dual to " + std::to_string(out.inside_nodes) + " inside nodes");
+  DualHexahedra d = dual_hexahedra(f, g, S, o.epsilon, o.threads);
+  VolumeMesh vm;
+  vm.V = std::move(d.V);
+  vm.C = std::move(d.C);
+  out.unprojected = d.unprojected;
+  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C) : Eigen::MatrixXi(0, 4);
+  vm.boundary.assign(size_t(vm.V.rows()), 0);
+  for (long i = 0; i < vm.B.size(); ++i)
+    vm.boundary[size_t(vm.B.data()[i])] = 1;
+  for (long e = 0; e < vm.C.rows(); ++e) {
+    bool layer = false;
+    for (int j = 0; j < 8; ++j)
+      layer = layer || d.boundary[size_t(vm.C(e, j))];
+    ++(layer ? out.layer_elements : out.inner_cells);
+  }
+  if (vm.C.rows() > 0) {
+    smooth_and_hold(f, g.spacing.minCoeff(), o, nullptr, vm, out, d.held);
+    out.held = d.held_points;
+  }
+  measure_coverage(f, g, S, o, vm, kCellsAcrossDualWall, out);
   return vm;
 }
 
@@ -457,6 +511,11 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
   out = VolumeMeshInfo{};
   out.grid = g;
   const bool tets = o.elements == VolumeElements::tetrahedra;
+  if (o.boundary == VolumeBoundary::dual) {
+    if (tets)
+      throw std::invalid_argument("volume_mesh: the dual boundary makes hexahedra only");
+    return dual_mesh(f, g, o, out);
+  }
 
   say("grid " + std::to_string(g.nodes(0)) + " x " + std::to_string(g.nodes(1)) + " x " +
       std::to_string(g.nodes(2)) + " nodes, sampling F");
@@ -472,11 +531,8 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
   // The body as the clipped grid sees it (zero sheets inside), for the layer's coverage.
   Eigen::VectorXd whole = S;
   fill_zero_sheets(g, whole, o.epsilon, o.threads);
-  auto measure_coverage = [&](const VolumeMesh& vm) {
-    say("measuring the volume the layer leaves out (the grid clipped at F = 0)");
-    const CutTetrahedra body = cut_tetrahedra(f, g, whole, o.epsilon, o.threads);
-    out.coverage = uncovered_volume(body, g, vm.V, vm.C, o.threads);
-    out.suggested_cell = out.coverage.thickness() / kCellsAcrossWall;
+  auto coverage = [&](const VolumeMesh& vm) {
+    measure_coverage(f, g, whole, o, vm, kCellsAcrossWall, out);
   };
   BoundaryMeshOptions bo;
   bo.cells = tets ? BackgroundCells::tetrahedra : BackgroundCells::hexahedra;
@@ -500,7 +556,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     none.V.resize(0, 3);
     none.C.resize(0, tets ? 4 : 8);
     none.B.resize(0, tets ? 3 : 4);
-    measure_coverage(none);
+    coverage(none);
     return none;
   }
   say("projecting " + std::to_string(m.V.rows()) + " boundary nodes onto F = 0");
@@ -564,7 +620,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
   for (long r = 0; r < n_top; ++r)
     layer.below[size_t(r)] = index_of(m.node(r));
   smooth_and_hold(f, g.spacing.minCoeff(), o, &layer, vm, out);
-  measure_coverage(vm);
+  coverage(vm);
   return vm;
 }
 

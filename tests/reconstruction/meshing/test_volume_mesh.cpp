@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -247,21 +248,32 @@ TEST_CASE("volume_mesh: thin walls of any orientation give no inverted element",
 
 namespace {
 
-// Each model at the given grids (cells along the longest side), tetrahedra and hexahedra: no
-// inverted element, every boundary node not held on F = 0, a closed boundary.
-void check_shipped_models(const std::vector<const char*>& names, const std::vector<int>& grids) {
+// Each model at the given grids (cells along the longest side), tetrahedra, projected and dual
+// hexahedra: no inverted element, every boundary node not held on F = 0, a closed boundary. With
+// `report`, one line per mesh: the minimum scaled Jacobian and the volume against the default
+// tetrahedra's (the grid clipped at F = 0) on the same grid.
+void check_shipped_models(const std::vector<const char*>& names, const std::vector<int>& grids,
+                          bool report = false) {
+  const std::pair<VolumeElements, VolumeBoundary> kinds[] = {
+      {VolumeElements::tetrahedra, VolumeBoundary::cut},
+      {VolumeElements::hexahedra, VolumeBoundary::projected},
+      {VolumeElements::hexahedra, VolumeBoundary::dual}};
   for (const char* name : names)
-    for (const int resolution : grids)
-      for (const VolumeElements e : {VolumeElements::tetrahedra, VolumeElements::hexahedra}) {
+    for (const int resolution : grids) {
+      double clipped = 0;
+      for (const auto& [e, b] : kinds) {
         const ImplicitFunction f =
             load_model(std::string(INTERLIN_DATA_DIR) + "/models/" + std::string(name));
         VolumeMeshOptions o;
         o.resolution = resolution;
         o.elements = e;
+        o.boundary = b;
         VolumeMeshInfo info;
         const VolumeMesh m = volume_mesh(f, o, &info);
-        INFO(name << " at resolution " << resolution
-                  << (e == VolumeElements::hexahedra ? ", hexahedra" : ", tetrahedra"));
+        const char* kind = e == VolumeElements::tetrahedra ? "tetrahedra"
+                           : b == VolumeBoundary::dual     ? "dual hexahedra"
+                                                           : "hexahedra";
+        INFO(name << " at resolution " << resolution << ", " << kind);
         if (e == VolumeElements::hexahedra && m.C.rows() == 0)
           continue; // the plate at 24 cells: no inner cell for the layer to stand on
         REQUIRE(m.C.rows() > 0);
@@ -270,7 +282,15 @@ void check_shipped_models(const std::vector<const char*>& names, const std::vect
         CHECK(q.min_scaled_jacobian > 0);
         CHECK(info.max_boundary_f < 1e-7 * f.box.diagonal().norm());
         CHECK(check_mesh(m.V, triangles(m)).boundary_edges == 0);
+        if (e == VolumeElements::tetrahedra)
+          clipped = q.volume;
+        if (report)
+          std::printf("%-18s %3d %-15s %8ld elements, inverted %ld, min scaled Jacobian %.3g, "
+                      "volume %.6g (%+.2f %% of the clipped grid's), held %ld\n",
+                      name, resolution, kind, long(m.C.rows()), q.inverted, q.min_scaled_jacobian,
+                      q.volume, 100 * (q.volume / clipped - 1), info.held);
       }
+    }
 }
 
 } // namespace
@@ -291,7 +311,8 @@ TEST_CASE("volume_mesh: every shipped model meshes without an inverted element",
 TEST_CASE("volume_mesh: every shipped model on finer grids", "[volume][.measure]") {
   // 14 s in Release, 130 s under ASan: not in CI (docs/benchmarks.md).
   check_shipped_models(
-      {"body11.rf", "car.rf", "impeller.rf", "naca0011_plate.rf", "uav.rf", "valve.rf"}, {32, 48});
+      {"body11.rf", "car.rf", "impeller.rf", "naca0011_plate.rf", "uav.rf", "valve.rf"},
+      {24, 32, 48}, true);
 }
 
 TEST_CASE("volume_mesh: surface smoothing of the cut boundary folds no element", "[volume]") {

@@ -26,12 +26,16 @@ enum class VolumeElements { tetrahedra, hexahedra };
 // node layer kept). projected: seed 003's layer of prisms between the inner cells' boundary facets
 // and their copies projected onto F = 0 (hexahedra always use it; where a wall is thinner than
 // about 4 cells or parts touch it would invert elements: those nodes are held short of F = 0,
-// VolumeMeshInfo::held, and walls without inner cells are lost).
-enum class VolumeBoundary { cut, projected };
+// VolumeMeshInfo::held, and walls without inner cells are lost). dual (hexahedra only): one
+// hexahedron per inside grid node, its corners the points of the 8 cells around it, on F = 0 for
+// cells cut by the surface (dual_hexahedra, Zhang & Bajaj 2006): walls down to one node layer
+// keep their volume, each side on its own cells' points.
+enum class VolumeBoundary { cut, projected, dual };
 
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
-  VolumeBoundary boundary = VolumeBoundary::cut; // tetrahedra only
+  VolumeBoundary boundary = VolumeBoundary::cut; // tetrahedra: cut or projected; hexahedra:
+                                                 // projected (any but dual) or dual
   Eigen::AlignedBox3d box; // region (the grid covers it); empty: the function's own box
   int resolution = 64;     // cells along the box's longest side (grid_with_resolution) ...
   double cell = 0;         // ... unless a cell size h > 0 is given (grid_with_cell)
@@ -92,6 +96,11 @@ constexpr double kLostVolumeWarning = 0.005;
 // up to a cell for the grid's offset, about 5 h; measured on spherical shells (every
 // orientation): nothing lost at 6 cells, up to 40 % lost at 4 (test_uncovered_volume.cpp).
 constexpr double kCellsAcrossWall = 6;
+
+// The same for dual hexahedra: a slab thicker than a cell holds a layer of grid nodes in any
+// orientation, which the dual mesh keeps; 2 leaves a cell of room (measured in
+// test_volume_mesh.cpp, thin-wall family).
+constexpr double kCellsAcrossDualWall = 2;
 
 // Steps (digest §6.2): (1) grid over the box (cubic cells, o.resolution or o.cell), F sampled at
 // the nodes in parallel; (2) inside nodes by o.rule, minus those within the margin; background

@@ -1,0 +1,45 @@
+#pragma once
+// Hexahedra dual to the grid's inside nodes (Zhang & Bajaj 2006, "Adaptive and quality
+// quadrilateral/hexahedral meshing from volumetric data", §3: one hexahedron per inside grid
+// point, its corners the points of the 8 cells around it): a boundary for seed 003's solid
+// elements that keeps walls one node layer thick, each side of the wall on its own cells' points.
+
+#include "interlin/interflatation/implicit_function.h"
+#include "interlin/reconstruction/meshing/regular_grid.h"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace interlin {
+
+struct DualHexahedra {
+  Eigen::MatrixXd V;          // #V by 3: one point per cell of g with an inside node (cell order)
+  Eigen::MatrixXi C;          // #C by 8 hexahedra (VTK order, positive), one per inside node
+  std::vector<char> boundary; // #V: the cell also has a node that is not inside (its point is
+                              // meant to lie on F = 0)
+  std::vector<char> held;     // #V: boundary points held short of F = 0 so that no element folds,
+                              // or whose projection found no root
+  long unprojected = 0;       // boundary points whose projection found no root near the cell
+  long held_points = 0;       // boundary points held (unprojected ones not counted)
+};
+
+// Steps: (1) inside nodes are S > epsilon; nodes on the grid's outer layer are skipped (pad the
+// grid by a cell); (2) every cell with an inside node gets a point: its centre when all 8 nodes
+// are inside, else the mean of the roots of the linear interpolant on its edges from an inside to
+// an outside node, projected onto F = 0 along -grad F (project_along; kept at the mean when no root
+// lies within a cell); a wall one node layer thick thus gets its top points from the cells above
+// it and its bottom points from those below; (3) each inside node's hexahedron has the points of
+// its 8 cells as corners; (4) while an element has a corner whose scaled Jacobian (corner_alphas
+// over the edge lengths) is below 0.2, its boundary points go halfway back towards their cells'
+// centres (after 10 rounds all the way: the centres make the grid's dual cubes, so the loop ends
+// with every corner at 0.2 or better). Without a buffer layer (pillowing) a hexahedron at an
+// oblique surface has several corners on F = 0 and needs holding: about 35-50 % of the boundary
+// points end short of F = 0 (VolumeMeshInfo::held; docs/benchmarks.md).
+// Inputs:  f (value; gradient when available), g, S #g nodes (sample_grid), epsilon >= 0,
+//          threads (0: all cores)
+// Output:  the mesh; its boundary facets are boundary_facets(C)
+// See also: volume_mesh (VolumeBoundary::dual), cut_tetrahedra
+DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
+                             const Eigen::VectorXd& S, double epsilon, int threads = 0);
+
+} // namespace interlin
