@@ -182,7 +182,8 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
 std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions& o) {
   const bool tets = o.elements == VolumeElements::tetrahedra;
   return "walls about " + fmt(info.coverage.thickness(), 3) +
-         (o.boundary == VolumeBoundary::dual ? " thick hold no grid node"
+         (o.boundary == VolumeBoundary::dual ? " thick (walls with no grid node, slivers under "
+                                               "held boundary points)"
                                              : " thick have no inner cell under the boundary "
                                                "layer") +
          ": use --cell " + fmt(info.suggested_cell, 2) + " or smaller, or " +

@@ -64,7 +64,8 @@ void warn_lost_volume(const VolumeMeshInfo& i, bool tets, bool dual) {
   const std::string m =
       "mesh_volume: the mesh leaves out " + std::to_string(100 * i.lost_fraction()) +
       " % of the body's volume (walls about " + std::to_string(i.coverage.thickness()) +
-      (dual ? " thick hold no grid node" : " thick have no inner cell under the boundary layer") +
+      (dual ? " thick (walls with no grid node, slivers under held boundary points)"
+            : " thick have no inner cell under the boundary layer") +
       "): use cell=" + std::to_string(i.suggested_cell) + " or smaller, or " +
       (tets ? "boundary='cut'" : "elements='tet'");
   if (PyErr_WarnEx(PyExc_UserWarning, m.c_str(), 1) != 0)

@@ -144,7 +144,7 @@ def test_mesh_volume_reports_the_volume_the_layer_loses():
     assert info["body_volume"] == 0 and info["lost_volume"] == 0  # cut: not measured
     # Dual hexahedra keep the wall's node layers at cell 0.05 (measured: 6 % left out, where the
     # wall holds no node); tetrahedra have no dual boundary.
-    with pytest.warns(UserWarning, match="hold no grid node"):
+    with pytest.warns(UserWarning, match="slivers under held boundary points"):
         V, C, B, on, info = interlin.mesh_volume(shell, "hex", cell=0.05, threads=1,
                                                  boundary="dual")
     assert interlin.volume_quality(V, C, threads=1)["inverted"] == 0

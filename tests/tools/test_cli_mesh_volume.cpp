@@ -162,7 +162,7 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
   const size_t c = dual.out.find("coverage     ");
   REQUIRE(c != std::string::npos);
   CHECK(std::stod(dual.out.substr(c + 13)) < 10);
-  CHECK_THAT(dual.err, Catch::Contains("thick hold no grid node: use --cell"));
+  CHECK_THAT(dual.err, Catch::Contains("slivers under held boundary points): use --cell"));
   // The clipped grid (default tetrahedra) loses nothing: no coverage line.
   const Run cut = run(mesh + "tet --cell 0.05 -q");
   CHECK(cut.status == 0);
