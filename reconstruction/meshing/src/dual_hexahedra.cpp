@@ -109,9 +109,11 @@ void cell_points(const RegularGrid& g, const Eigen::VectorXd& S, const std::vect
 }
 
 // The cut cells' points projected onto F = 0 along -grad F from their means, within a cell
-// (further roots belong to another part of the surface). Returns the points left at their means.
-long project_cut_points(const ImplicitFunction& f, const RegularGrid& g,
-                        const std::vector<char>& cut, Eigen::MatrixXd& target, int threads) {
+// (further roots belong to another part of the surface). Returns the points left at their means
+// (flagged, #target).
+std::vector<char> project_cut_points(const ImplicitFunction& f, const RegularGrid& g,
+                                     const std::vector<char>& cut, Eigen::MatrixXd& target,
+                                     int threads) {
   const double h = g.spacing.minCoeff();
   std::vector<long> rows;
   for (size_t r = 0; r < cut.size(); ++r)
@@ -127,12 +129,12 @@ long project_cut_points(const ImplicitFunction& f, const RegularGrid& g,
   constexpr double kStep = 0.25, kReach = 4; // h / 4 steps up to a cell
   const Eigen::MatrixXd before = P;
   project_along(f, P, D, Eigen::VectorXd::Constant(P.rows(), kStep * h), ro, &ok, kReach, 1);
-  long missed = 0;
+  std::vector<char> missed(cut.size(), 0);
   for (size_t k = 0; k < rows.size(); ++k) {
     if (ok[k] && (P.row(long(k)) - before.row(long(k))).norm() <= h)
       target.row(rows[k]) = P.row(long(k));
     else
-      ++missed;
+      missed[size_t(rows[k])] = 1;
   }
   return missed;
 }
@@ -164,14 +166,8 @@ DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
   out.C = d.C;
   Eigen::MatrixXd centre, target;
   cell_points(g, S, in, d.cell, centre, target, out.boundary, threads);
-  std::vector<char> missed(out.boundary.size(), 0);
-  {
-    Eigen::MatrixXd projected = target;
-    out.unprojected = project_cut_points(f, g, out.boundary, projected, threads);
-    for (size_t r = 0; r < missed.size(); ++r)
-      missed[r] = out.boundary[r] && projected.row(long(r)) == target.row(long(r));
-    target = std::move(projected);
-  }
+  const std::vector<char> missed = project_cut_points(f, g, out.boundary, target, threads);
+  out.unprojected = std::count(missed.begin(), missed.end(), char(1));
   // Hold: boundary points of poor elements go towards their cells' centres.
   out.V = target;
   std::vector<double> s(out.boundary.size(), 1);

@@ -355,7 +355,7 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
     const Eigen::MatrixXd before = vm.V;
     for (size_t r = 0; r < nodes.size(); ++r)
       vm.V.row(nodes[r]) = Vb.row(long(r));
-    if (!projected) // the projected layer's folds are held below
+    if (layer == nullptr) // the projected layer's folds are held below
       restore_folded(before, vm.boundary, vm.C, vm.V);
   }
   if (layer != nullptr) // a valid mesh before the interior moves

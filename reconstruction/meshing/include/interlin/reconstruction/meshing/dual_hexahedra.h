@@ -33,7 +33,7 @@ struct DualHexahedra {
 // over the edge lengths) is below 0.2, its boundary points go halfway back towards their cells'
 // centres (after 10 rounds all the way: the centres make the grid's dual cubes, so the loop ends
 // with every corner at 0.2 or better). Without a buffer layer (pillowing) a hexahedron at an
-// oblique surface has several corners on F = 0 and needs holding: about 35-50 % of the boundary
+// oblique surface has several corners on F = 0 and needs holding: 35-51 % of the boundary
 // points end short of F = 0 (VolumeMeshInfo::held; docs/benchmarks.md).
 // Inputs:  f (value; gradient when available), g, S #g nodes (sample_grid), epsilon >= 0,
 //          threads (0: all cores)
