@@ -40,6 +40,21 @@ inline double r0_or(double a, double b) {
   return a + b + std::sqrt(a * a + b * b);
 }
 
+// A thin wall: the slab |n . p| <= T / 2 (n a unit normal) AND the unit ball (R0); box +-1.1.
+inline ImplicitFunction thin_disc(const Eigen::Vector3d& n, double T) {
+  return implicit(
+      [n, T](double x, double y, double z) {
+        const double s = n.dot(Eigen::Vector3d(x, y, z));
+        return r0_and(T * T / 4 - s * s, 1 - x * x - y * y - z * z);
+      },
+      cube_box(1.1));
+}
+
+// thin_disc's exact volume, pi (T - T^3 / 12) (the ball's slice between -T/2 and T/2).
+inline double thin_disc_volume(double T) {
+  return M_PI * (T - T * T * T / 12);
+}
+
 // Ball of radius r at the origin: 1 - |p|^2 / r^2, with its exact gradient; box +-1.1 r.
 inline ImplicitFunction sphere(double r) {
   ImplicitFunction f =

@@ -377,6 +377,26 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
   out.max_boundary_f = max_boundary_value(f, vm, held);
 }
 
+// vm.B, the element facets used once (facet_corners columns when there are no elements), and
+// vm.boundary, which nodes lie on them.
+void mark_boundary(VolumeMesh& vm, int facet_corners) {
+  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C) : Eigen::MatrixXi(0, facet_corners);
+  vm.boundary.assign(size_t(vm.V.rows()), 0);
+  for (long i = 0; i < vm.B.size(); ++i)
+    vm.boundary[size_t(vm.B.data()[i])] = 1;
+}
+
+// F at the nodes of g (node order of RegularGrid), with the progress line.
+Eigen::VectorXd sampled_grid(const ImplicitFunction& f, const RegularGrid& g,
+                             const VolumeMeshOptions& o) {
+  if (o.progress)
+    o.progress("grid " + std::to_string(g.nodes(0)) + " x " + std::to_string(g.nodes(1)) + " x " +
+               std::to_string(g.nodes(2)) + " nodes, sampling F");
+  Eigen::VectorXd S;
+  sample_grid(f, g, S, o.threads);
+  return S;
+}
+
 // The tetrahedral mesh of the background tetrahedra clipped at F = 0 (cut_tetrahedra): nodes on
 // internal zero sheets count as inside, the boundary is the facets used once.
 VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g, Eigen::VectorXd& S,
@@ -389,10 +409,7 @@ VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g, Eigen::Vect
   vm.C = std::move(cut.C);
   out.inner_cells = cut.whole;
   out.layer_elements = vm.C.rows() - cut.whole;
-  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C) : Eigen::MatrixXi(0, 3);
-  vm.boundary.assign(size_t(vm.V.rows()), 0);
-  for (long i = 0; i < vm.B.size(); ++i)
-    vm.boundary[size_t(vm.B.data()[i])] = 1;
+  mark_boundary(vm, 3);
   return vm;
 }
 
@@ -416,11 +433,7 @@ VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const Vol
   g.origin -= g.spacing;
   g.nodes += 2;
   out.grid = g;
-  if (o.progress)
-    o.progress("grid " + std::to_string(g.nodes(0)) + " x " + std::to_string(g.nodes(1)) + " x " +
-               std::to_string(g.nodes(2)) + " nodes, sampling F");
-  Eigen::VectorXd S;
-  sample_grid(f, g, S, o.threads);
+  Eigen::VectorXd S = sampled_grid(f, g, o);
   fill_zero_sheets(g, S, o.epsilon, o.threads);
   out.inside_nodes = (S.array() > o.epsilon).count();
   if (o.progress)
@@ -430,10 +443,7 @@ VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const Vol
   vm.V = std::move(d.V);
   vm.C = std::move(d.C);
   out.unprojected = d.unprojected;
-  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C) : Eigen::MatrixXi(0, 4);
-  vm.boundary.assign(size_t(vm.V.rows()), 0);
-  for (long i = 0; i < vm.B.size(); ++i)
-    vm.boundary[size_t(vm.B.data()[i])] = 1;
+  mark_boundary(vm, 4);
   for (long e = 0; e < vm.C.rows(); ++e) {
     bool layer = false;
     for (int j = 0; j < 8; ++j)
@@ -517,10 +527,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     return dual_mesh(f, g, o, out);
   }
 
-  say("grid " + std::to_string(g.nodes(0)) + " x " + std::to_string(g.nodes(1)) + " x " +
-      std::to_string(g.nodes(2)) + " nodes, sampling F");
-  Eigen::VectorXd S;
-  sample_grid(f, g, S, o.threads);
+  Eigen::VectorXd S = sampled_grid(f, g, o);
   if (tets && o.boundary == VolumeBoundary::cut) {
     say("cutting the grid's tetrahedra at F = 0");
     VolumeMesh vm = cut_mesh(f, g, S, o, out);

@@ -16,19 +16,14 @@ using namespace interlin;
 
 TEST_CASE("volume_mesh: dual hexahedra keep walls thinner than a cell", "[volume]") {
   // The disc |n . p| <= T / 2 AND the unit ball (R0), exact volume pi (T - T^3 / 12), h = 0.08.
-  const double pi = 3.14159265358979323846, h = 0.08;
+  const double h = 0.08;
   const Eigen::Vector3d normals[] = {{0, 0, 1}, {0, 1, 1}, {1, 2, 3}, {0.3, -0.2, 1}};
   for (const double cells : {0.3, 0.5, 1.0, 1.5})
     for (const Eigen::Vector3d& n0 : normals) {
       const Eigen::Vector3d n = n0.normalized();
       const double T = cells * h;
-      const ImplicitFunction f = test::implicit(
-          [n, T](double x, double y, double z) {
-            const double s = n.dot(Eigen::Vector3d(x, y, z));
-            return test::r0_and(T * T / 4 - s * s, 1 - x * x - y * y - z * z);
-          },
-          test::cube_box(1.1));
-      const double exact = pi * (T - T * T * T / 12);
+      const ImplicitFunction f = test::thin_disc(n, T);
+      const double exact = test::thin_disc_volume(T);
       INFO("thickness " << cells << " cells, normal " << n.transpose());
       VolumeMeshOptions o;
       o.cell = h;
