@@ -353,6 +353,13 @@ SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOpt
   for (const PatchSeed& at : samples)
     surface.push_back({evaluate(B, at), at});
   R.surface_points = static_cast<long>(surface.size());
+  // The band cell of a boundary point (its index into starts); every boundary point has one.
+  const auto band_slot = [&](const Vector3d& p) {
+    const long c = C.cell_of(p);
+    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
+      throw std::runtime_error("section body: a boundary point lies outside the band cells");
+    return static_cast<size_t>(slot[static_cast<size_t>(c)]);
+  };
   // Every sheet of the boundary that passes through a cell gets a start there (two sheets meet
   // at a sharp trailing edge: a start on one side does not reach the other side's points);
   // sheets by patch and by outward normals within 30 degrees.
@@ -367,10 +374,7 @@ SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOpt
     for (const PatchSeed& at : starts[c])
       sheet[c].push_back(normal_at(at));
   for (const auto& [p, at] : surface) {
-    const long c = C.cell_of(p);
-    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
-      throw std::runtime_error("section body: a boundary point lies outside the band cells");
-    const size_t k = static_cast<size_t>(slot[static_cast<size_t>(c)]);
+    const size_t k = band_slot(p);
     const Vector3d n = normal_at(at);
     bool covered = false;
     for (size_t j = 0; j < starts[k].size() && !covered; ++j)
@@ -381,10 +385,7 @@ SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOpt
     }
   }
   for (const auto& [p, at] : surface) {
-    const long c = C.cell_of(p);
-    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
-      throw std::runtime_error("section body: a boundary point lies outside the band cells");
-    std::vector<PatchSeed>& s = starts[static_cast<size_t>(slot[static_cast<size_t>(c)])];
+    std::vector<PatchSeed>& s = starts[band_slot(p)];
     const BodyDistance near = body_distance(B, p, s.data(), static_cast<int>(s.size()));
     if (!near.found || std::abs(near.distance) > 1e-13 * diag)
       s.push_back(at);
@@ -394,10 +395,7 @@ SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOpt
   // between the samples: in folds, or on a thin edge's other sheet when a cell holds only a
   // sliver of it). Uniform rounds over the whole boundary, then rounds near the sharp edges.
   const auto start_set = [&](const Vector3d& p) -> std::vector<PatchSeed>& {
-    const long c = C.cell_of(p);
-    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
-      throw std::runtime_error("section body: a boundary point lies outside the band cells");
-    return starts[static_cast<size_t>(slot[static_cast<size_t>(c)])];
+    return starts[band_slot(p)];
   };
   for (int round = 0; round < 2; ++round)
     R.boundary_misses = cover_random_points(B, uniform_boundary_points(B, round), start_set, diag);
