@@ -23,11 +23,10 @@ Usage: python3 studies/cloud_reconstruction.py [OUT_DIR] [--quick] [-q] [--threa
 import math
 import os
 import subprocess
-import sys
 
 import numpy as np
 
-from study import ROOT, Study, _atomic, arguments, plt
+from study import ROOT, Study, StudyError, _atomic, arguments, folder, plt, run
 
 CLOUDS = ["blade", "blade-noisy", "blade-hole", "slices", "slices-noisy", "radial", "impeller",
           "uav", "car", "valve", "naca0011_plate", "valve-noisy", "bunny"]
@@ -44,11 +43,13 @@ def number(text):
     return math.nan if text in ("–", "-", "") else float(text)
 
 
-def parse(stdout):
+def parse(stdout, source, first_line=1):
     """bench_clouds' output for one cloud -> (name, description, [(method, values, error)],
-    notes). The first method is interlin's (the sectioned-scan loft for sectioned clouds)."""
+    notes). The first method is interlin's (the sectioned-scan loft for sectioned clouds).
+    A table that does not parse is a StudyError "SOURCE:LINE: ..." (stdout's first line is
+    line `first_line` of SOURCE)."""
     name, description, rows, notes, in_table = None, "", [], [], False
-    for line in stdout.splitlines():
+    for number_, line in enumerate(stdout.splitlines(), first_line):
         if line.startswith("## "):
             name = line[3:].rsplit(" (", 1)[0]
         elif line.startswith("| method"):
@@ -58,18 +59,26 @@ def parse(stdout):
         elif in_table and line.startswith("|---"):
             continue
         elif in_table and line.startswith("| "):
-            cells = [c.strip() for c in line.strip().strip("|").split("|")]
-            mean, mx = cells[4].split("/")
-            values = [number(cells[1]), number(cells[2]), number(cells[3]), number(mean),
-                      number(mx), number(cells[5]), number(cells[6]), number(cells[7])]
-            rows.append((cells[0], values, cells[8] if len(cells) > 8 else ""))
+            rows.append(method_row(line, "%s:%d" % (source, number_)))
         elif in_table and line.startswith("sectioned:"):
             notes.append(line)
         elif name and not description and line and not line.startswith("|"):
             description = line
     if not rows:
-        raise RuntimeError("bench_clouds printed no table:\n" + stdout)
+        raise StudyError("%s: no bench_clouds table" % source)
     return name, description, rows, notes
+
+
+def method_row(line, where):
+    """One row of bench_clouds' method table -> (method, values, error)."""
+    cells = [c.strip() for c in line.strip().strip("|").split("|")]
+    try:
+        mean, mx = cells[4].split("/")
+        values = [number(cells[1]), number(cells[2]), number(cells[3]), number(mean),
+                  number(mx), number(cells[5]), number(cells[6]), number(cells[7])]
+    except (IndexError, ValueError):
+        raise StudyError("%s: not a row of bench_clouds' method table: %s" % (where, line))
+    return cells[0], values, cells[8] if len(cells) > 8 else ""
 
 
 def run_cloud(bench, key, settings, threads, raw_dir, resume):
@@ -82,13 +91,14 @@ def run_cloud(bench, key, settings, threads, raw_dir, resume):
         with open(raw) as f:
             saved_args, _, stdout = f.read().partition("\n")
         if saved_args == " ".join(args):
-            return parse(stdout)
+            return parse(stdout, raw, first_line=2)
+    command = " ".join([bench] + args)
     r = subprocess.run([bench] + args, capture_output=True, text=True)
     if r.returncode != 0:
-        raise RuntimeError("%s failed (%d): %s" % (" ".join([bench] + args), r.returncode,
-                                                   r.stderr))
+        last = (r.stderr.strip().splitlines() or ["no message"])[-1]
+        raise StudyError("%s: exit status %d: %s" % (command, r.returncode, last))
     _atomic(raw, lambda f: f.write(" ".join(args) + "\n" + r.stdout))
-    return parse(r.stdout)
+    return parse(r.stdout, command)
 
 
 def score(values):
@@ -106,14 +116,13 @@ def main():
         p.add_argument("--resume", action="store_true",
                        help="reuse the clouds in OUT_DIR/raw run with the same arguments")))
     if not os.access(args.bench, os.X_OK):
-        sys.exit("cloud_reconstruction: %s: not found; build it (README command 2 builds bench/ "
-                 "when PCL's surface module, Open3D and CGAL are installed)" % args.bench)
+        raise StudyError("%s: not found; build it (README command 2 builds bench/ when PCL's "
+                         "surface module, Open3D and CGAL are installed)" % args.bench)
     study = Study("cloud_reconstruction", "Point cloud reconstruction against screened Poisson",
                   args)
     settings = QUICK if args.quick else FULL
     threads = args.threads or max(1, (os.cpu_count() or 1) // study.size)
-    raw_dir = os.path.join(args.out, "raw")
-    os.makedirs(raw_dir, exist_ok=True)
+    raw_dir = folder(os.path.join(args.out, "raw"))
     results = study.map(lambda key: run_cloud(args.bench, key, settings, threads, raw_dir,
                                               args.resume), settings["clouds"], "cloud")
     if not study.writer:
@@ -199,4 +208,4 @@ times on a shared machine, to be read as same-run ratios.""" % (
 
 
 if __name__ == "__main__":
-    main()
+    run("cloud_reconstruction", main)

@@ -19,7 +19,7 @@ Usage: python3 studies/implicit_normalisation.py [OUT_DIR] [--quick] [-q]   (~1 
 """
 import numpy as np
 
-from study import Study, arguments, interlin, plt
+from study import Study, arguments, interlin, plt, run
 
 rf = interlin.rf
 OFFSETS = [0.001, 0.002, 0.005, 0.01, 0.02, 0.05]  # delta / bounding-box diagonal
@@ -208,4 +208,4 @@ max abs(F - d) over %d random points of the box with |d| <= %g diagonal; `box`: 
 
 
 if __name__ == "__main__":
-    main()
+    run("implicit_normalisation", main)

@@ -16,7 +16,7 @@ Usage: python3 studies/interflatation_convergence.py [OUT_DIR] [--quick] [-q]   
 """
 import numpy as np
 
-from study import Study, arguments, fit_order, interlin, label_axes, plt
+from study import Study, arguments, fit_order, interlin, label_axes, plt, run
 
 ROUND_OFF = 1e-13  # errors below this are round-off of O(1) values: left out of the fits
 
@@ -318,4 +318,4 @@ docs/benchmarks.md):
 
 
 if __name__ == "__main__":
-    main()
+    run("interflatation_convergence", main)

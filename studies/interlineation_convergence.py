@@ -16,7 +16,7 @@ Usage: python3 studies/interlineation_convergence.py [OUT_DIR] [--quick] [-q]   
 """
 import numpy as np
 
-from study import Study, arguments, fit_order, interlin, label_axes, loglog, plt
+from study import Study, arguments, fit_order, interlin, label_axes, loglog, plt, run
 
 ROUND_OFF = 1e-13  # errors below this are round-off of O(1) values: left out of the fits
 
@@ -140,4 +140,4 @@ order is the least-squares slope of log(error) against log(h) from n = 4 on, ove
 
 
 if __name__ == "__main__":
-    main()
+    run("interlineation_convergence", main)

@@ -10,16 +10,14 @@ Usage: python3 studies/rf_volumes.py [OUT_DIR] [--quick] [-q] [--threads T]   (~
 """
 import os
 
-import numpy as np
-
-from study import DATA, Study, arguments, interlin, plt
+from study import DATA, Study, arguments, interlin, plt, run
 
 # model, cell sizes, digest value and its tolerance (000 T19, T21)
 MODELS = [("impeller", (0.1, 0.05), 1234.0, 0.005), ("uav", (0.02, 0.01), 7.565, 0.005)]
 QUICK = [("uav", (0.05,), 7.565, 0.005)]
 
 
-def run(case, threads):
+def estimate(case, threads):
     name, cell = case
     f = interlin.load_model(os.path.join(DATA, "models", name + ".rf"))
     v, se, n = interlin.estimate_volume(f, cell, seed=1, threads=threads)
@@ -34,7 +32,7 @@ def main():
     models = QUICK if args.quick else MODELS
     threads = args.threads or max(1, (os.cpu_count() or 1) // study.size)
     cases = [(name, cell) for name, cells, _, _ in models for cell in cells]
-    results = study.map(lambda c: run(c, threads), cases, "model/cell")
+    results = study.map(lambda c: estimate(c, threads), cases, "model/cell")
     if not study.writer:
         return
     r = study.report
@@ -66,4 +64,4 @@ and tolerance are its own Monte Carlo estimates of the thesis programs.""")
 
 
 if __name__ == "__main__":
-    main()
+    run("rf_volumes", main)

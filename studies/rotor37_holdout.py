@@ -21,7 +21,7 @@ import os
 
 import numpy as np
 
-from study import DATA, Study, arguments, interlin, plt
+from study import DATA, Study, arguments, interlin, plt, run
 
 SECTIONS = os.path.join(DATA, "rotor37", "sections.csv")
 LE_ROW, TE_ROW = 0, 99  # the NASA table's J = 1 and J = 100 (data/rotor37/README.md)
@@ -214,4 +214,4 @@ half of both sides (error map), not local noise.""")
 
 
 if __name__ == "__main__":
-    main()
+    run("rotor37_holdout", main)

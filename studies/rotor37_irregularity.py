@@ -20,7 +20,7 @@ Usage: python3 studies/rotor37_irregularity.py [OUT_DIR] [--quick] [-q] [--data 
 import math
 import os
 
-from study import DATA, Study, arguments, plt
+from study import DATA, Study, arguments, plt, run
 
 
 def read_sections(path):
@@ -124,4 +124,4 @@ k+2. On a smooth blade this residual is O(h^4) and far below the hold-out distan
 
 
 if __name__ == "__main__":
-    main()
+    run("rotor37_irregularity", main)

@@ -20,7 +20,7 @@ Usage: python3 studies/spanwise_parameters.py [OUT_DIR] [--quick] [-q]
 """
 import numpy as np
 
-from study import Study, arguments, fit_order, interlin, loglog, plt
+from study import Study, arguments, interlin, loglog, plt, run
 
 R0, R1 = 200.0, 300.0
 BASE = dict(relative_pitch=0.75, axial_width=40.0, stagger_deg=40, inlet_angle_deg=90,
@@ -177,4 +177,4 @@ the loft of the K stations (%d x 3 x 152 points per blade).""" % (max(counts) - 
 
 
 if __name__ == "__main__":
-    main()
+    run("spanwise_parameters", main)

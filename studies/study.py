@@ -7,6 +7,10 @@ A study is run as
     python3 studies/NAME.py [OUT_DIR] [--quick] [-q]             # serial
     mpirun -n 4 python3 studies/NAME.py [OUT_DIR] [--quick] [-q]  # cases spread over 4 ranks
 
+through `run(NAME, main)`: bad input (a saved file that does not parse, an OUT_DIR that is a
+file, an unreadable file, a failing tool) ends it with one line `NAME: message` naming the file,
+exit status 1 and no report, as the CLI does.
+
 OUT_DIR defaults to docs/studies/NAME (the reports docs/benchmarks.md links). --quick runs a
 tiny version of the study (the smoke tests in CI use it). The serial and the MPI run write the
 same files: every case is computed the same way wherever it runs, and rank 0 assembles the
@@ -24,10 +28,10 @@ DATA = os.path.join(ROOT, "data")
 
 # The module from PYTHONPATH, else from this checkout's build/python (README command 2).
 try:
-    import interlin  # noqa: F401
+    import interlin
 except ImportError:
     sys.path.insert(0, os.path.join(ROOT, "build", "python"))
-    import interlin  # noqa: F401
+    import interlin
 
 import matplotlib
 
@@ -47,6 +51,37 @@ def mpi_world():
     from mpi4py import MPI
     comm = MPI.COMM_WORLD
     return comm.Get_rank(), comm.Get_size(), comm
+
+
+class StudyError(Exception):
+    """Bad input to a study; `run` prints it as one line `NAME: message`."""
+
+
+def run(name, main):
+    """Calls main(). A StudyError, interlin.InputError or OSError (bad input, a file that cannot
+    be read or written) ends the study with one line `NAME: message` on stderr and exit status 1,
+    not a traceback; under MPI the other ranks are stopped too (they would wait in a gather)."""
+    try:
+        main()
+    except (StudyError, interlin.InputError, OSError) as e:
+        if isinstance(e, OSError) and e.filename is not None:
+            message = "%s: %s" % (e.filename, e.strerror)
+        else:
+            message = str(e)
+        print("%s: %s" % (name, message), file=sys.stderr, flush=True)
+        _, size, comm = mpi_world()
+        if size > 1:
+            comm.Abort(1)
+        sys.exit(1)
+
+
+def folder(path):
+    """Creates the folder `path` (and its parents) unless it exists; a file in its place is a
+    StudyError, not os.makedirs' 'File exists'."""
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise StudyError("%s: not a folder" % path)
+    os.makedirs(path, exist_ok=True)
+    return path
 
 
 def arguments(name, description, extra=None):
@@ -150,8 +185,7 @@ class Report:
     not at all (temporary name, then rename)."""
 
     def __init__(self, out, title, name, args):
-        os.makedirs(out, exist_ok=True)
-        self.out = out
+        self.out = folder(out)
         command = "python3 studies/%s.py" % name
         if args.quick:
             command += " --quick"

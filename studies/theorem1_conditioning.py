@@ -16,7 +16,7 @@ Deterministic (seeded random knots).
 """
 import numpy as np
 
-from study import Study, arguments, interlin, plt
+from study import Study, arguments, interlin, plt, run
 
 RATIOS = [1.0, 10.0, 1e3, 1e5]
 DEGREES = [2, 3, 5, 7]
@@ -95,4 +95,4 @@ have neighbouring spans differing by more than 10, docs/formulas.md):
 
 
 if __name__ == "__main__":
-    main()
+    run("theorem1_conditioning", main)

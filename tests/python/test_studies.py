@@ -62,3 +62,55 @@ def test_cloud_study_report_from_its_saved_bench_outputs(tmp_path):
         with open(os.path.join(saved, name)) as a, open(tmp_path / name) as b:
             assert a.read() == b.read(), name
     assert "met on 0 of 13 clouds" in (tmp_path / "report.md").read_text()
+
+
+def saved_cloud_raw(tmp_path):
+    """A copy of the committed cloud study's saved bench outputs in tmp_path/raw."""
+    saved = os.path.join(ROOT, "docs", "studies", "cloud_reconstruction", "raw")
+    shutil.copytree(saved, tmp_path / "raw")
+    return tmp_path / "raw"
+
+
+def corrupt_table_row(out):
+    """blade.txt with its first method row cut short -> the message the study must print."""
+    raw = saved_cloud_raw(out) / "blade.txt"
+    lines = raw.read_text().splitlines(keepends=True)
+    row = next(i for i, line in enumerate(lines) if line.startswith("| method")) + 2
+    lines[row] = "| interlin | 0.1 | x |\n"
+    raw.write_text("".join(lines))
+    return r"%s:%d: not a row of bench_clouds' method table" % (re.escape(str(raw)), row + 1)
+
+
+def raw_file_is_a_folder(out):
+    (saved_cloud_raw(out) / "blade.txt").unlink()
+    (out / "raw" / "blade.txt").mkdir()
+    return re.escape(str(out / "raw" / "blade.txt")) + ": Is a directory"
+
+
+@pytest.mark.parametrize("study,make_bad", [
+    ("cloud_reconstruction", corrupt_table_row),
+    ("cloud_reconstruction", raw_file_is_a_folder),
+    ("cloud_reconstruction", None),
+    ("rf_volumes", None)])
+def test_bad_input_ends_a_study_with_one_line(tmp_path, study, make_bad):
+    """A saved bench output that does not parse, a file where a folder is expected, or an OUT_DIR
+    that is a file: exit status 1, one line `STUDY: FILE[:LINE]: message`, no traceback, no
+    report."""
+    out = tmp_path / "out"
+    out.mkdir()
+    if make_bad:
+        expected = make_bad(out)
+    else:
+        out.rmdir()
+        out.write_text("a file, not a folder\n")
+        expected = re.escape(str(out)) + ": not a folder"
+    cmd = [sys.executable, os.path.join(ROOT, "studies", study + ".py"), str(out), "-q"]
+    if study == "cloud_reconstruction":
+        cmd += ["--resume", "--threads", "1", "--bench", sys.executable]
+    else:
+        cmd += ["--quick"]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 1
+    assert re.fullmatch(r"%s: %s.*\n" % (study, expected), r.stderr), r.stderr
+    assert not (out.is_dir() and (out / "report.md").exists())
+    assert not glob.glob(str(tmp_path / "**" / "tmp*"), recursive=True)
