@@ -35,6 +35,12 @@ struct Cells {
   long node(int i, int j, int k) const {
     return i + grid.n(0) * (j + static_cast<long>(grid.n(1)) * k);
   }
+  // Node index of corner q (bits: +i, +j, +k) of a cell.
+  long corner_node(long cell, int q) const {
+    const long i = cell % m(0), j = (cell / m(0)) % m(1),
+               k = cell / (static_cast<long>(m(0)) * m(1));
+    return node(int(i + (q & 1)), int(j + ((q >> 1) & 1)), int(k + (q >> 2)));
+  }
   Vector3d corner(long cell) const {
     const long i = cell % m(0), j = (cell / m(0)) % m(1),
                k = cell / (static_cast<long>(m(0)) * m(1));
@@ -212,6 +218,226 @@ void check_body_options(const SectionBodyOptions& o) {
     throw std::invalid_argument("section body: checks_per_cell must be >= 0");
 }
 
+// What the build steps share: the body, its exact projection, the grid, the exact signed
+// distance at its nodes and the band cells.
+struct BodyGrid {
+  const BodyPatches& B;
+  const BodyProjection& proj;
+  Cells C;
+  MatrixXd N;                       // the grid nodes, one row each
+  std::vector<BodyDistance> node_d; // their exact signed distances
+  std::vector<long> band;           // band cells
+  std::vector<long> slot;           // cell -> its index into band, -1 outside the band
+  int threads;
+  double diag; // bounding-box diagonal of the body
+
+  // The band cell of a boundary point (its index into band); every boundary point has one.
+  size_t band_slot(const Vector3d& p) const {
+    const long c = C.cell_of(p);
+    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
+      throw std::runtime_error("section body: a boundary point lies outside the band cells");
+    return static_cast<size_t>(slot[static_cast<size_t>(c)]);
+  }
+};
+
+// The model box (bounding box of the boundary samples + margin x its diagonal) and the grid
+// over it: `resolution` cells along the longest side, two cells of padding below, three above.
+Cells model_grid(const Eigen::AlignedBox3d& bbox, const SectionBodyOptions& o,
+                 SectionBodyModel& M) {
+  const double diag = bbox.diagonal().norm();
+  M.box = Eigen::AlignedBox3d(bbox.min().array() - o.margin * diag,
+                              bbox.max().array() + o.margin * diag);
+  Cells C;
+  C.grid.h = M.box.sizes().maxCoeff() / o.resolution;
+  C.grid.origin = M.box.min().array() - 2 * C.grid.h;
+  for (int a = 0; a < 3; ++a)
+    C.grid.n(a) = static_cast<int>(std::ceil(M.box.sizes()(a) / C.grid.h)) + 5;
+  C.m = C.grid.n - 1;
+  M.band_inner = o.band_inner * C.grid.h;
+  M.band_outer = o.band_outer * C.grid.h;
+  return C;
+}
+
+// Far field: the exact signed distance at the grid nodes, stored as the grid's values.
+void far_field(BodyGrid& G) {
+  NodeGrid& g = G.C.grid;
+  const long nodes = static_cast<long>(g.n(0)) * g.n(1) * g.n(2);
+  G.N.resize(nodes, 3);
+  for (int k = 0; k < g.n(2); ++k)
+    for (int j = 0; j < g.n(1); ++j)
+      for (int i = 0; i < g.n(0); ++i)
+        G.N.row(G.C.node(i, j, k)) = (g.origin + g.h * Vector3d(i, j, k)).transpose();
+  G.node_d = G.proj.distances(G.N, G.threads);
+  g.values.resize(static_cast<size_t>(nodes));
+  for (long i = 0; i < nodes; ++i)
+    g.values[static_cast<size_t>(i)] = G.node_d[static_cast<size_t>(i)].distance;
+}
+
+// Band cells: some point of the cell may be within band_outer of the boundary (|d| is
+// 1-Lipschitz and every point of a cell lies within h sqrt(3) of each corner).
+void find_band(BodyGrid& G, double band_outer) {
+  G.slot.assign(static_cast<size_t>(G.C.count()), -1);
+  for (long c = 0; c < G.C.count(); ++c) {
+    double lo = INFINITY;
+    for (int q = 0; q < 8; ++q)
+      lo = std::min(lo, std::abs(G.node_d[static_cast<size_t>(G.C.corner_node(c, q))].distance));
+    if (lo < band_outer + G.C.grid.h * std::sqrt(3.0)) {
+      G.slot[static_cast<size_t>(c)] = static_cast<long>(G.band.size());
+      G.band.push_back(c);
+    }
+  }
+}
+
+// The near field's check points: per band cell its centre, then checks_per_cell random points;
+// their exact distances; and the starts of every band cell.
+struct NearField {
+  MatrixXd Q;
+  std::vector<BodyDistance> q_d;
+  std::vector<std::vector<PatchSeed>> starts;
+};
+
+// Cells the boundary may cross get the centre's foot on every patch that comes within the
+// cell's circumscribed sphere: a sliver of a cap or a side in a corner of the cell has no
+// samples there, but its points lie near that foot.
+void crossed_cell_feet(const BodyGrid& G, NearField& F, int per) {
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * G.C.grid.h;
+  std::vector<size_t> crossed;
+  for (size_t c = 0; c < G.band.size(); ++c)
+    if (std::abs(F.q_d[c * static_cast<size_t>(per)].distance) <= half_diagonal)
+      crossed.push_back(c);
+  MatrixXd centres(static_cast<Index>(crossed.size()), 3);
+  for (size_t i = 0; i < crossed.size(); ++i)
+    centres.row(static_cast<Index>(i)) = F.Q.row(static_cast<Index>(crossed[i]) * per);
+  for (int patch = 0; patch < 3; ++patch) {
+    const std::vector<BodyDistance> f = G.proj.distances(centres, G.threads, patch);
+    for (size_t i = 0; i < crossed.size(); ++i)
+      if (f[i].found && std::abs(f[i].distance) <= half_diagonal)
+        F.starts[crossed[i]].push_back(f[i].seed);
+  }
+}
+
+// Starts: the foot of the cell centre, completed by the corners and random check points whose
+// exact foot the starts do not find.
+NearField near_field_starts(const BodyGrid& G, int checks_per_cell, SectionBodyReport& R,
+                            const std::function<void(const std::string&)>& progress) {
+  const int per = 1 + checks_per_cell;
+  const double tolerance = 1e-9 * G.diag;
+  NearField F;
+  F.Q = random_points(G.C, G.band, per, 0);
+  for (size_t c = 0; c < G.band.size(); ++c)
+    F.Q.row(static_cast<Index>(c) * per) =
+        (G.C.corner(G.band[c]) + Vector3d::Constant(0.5 * G.C.grid.h)).transpose();
+  progress("near-field starts for " + std::to_string(G.band.size()) + " band cells (" +
+           std::to_string(F.Q.rows()) + " exact feet)");
+  F.q_d = G.proj.distances(F.Q, G.threads);
+  F.starts.resize(G.band.size());
+  crossed_cell_feet(G, F, per);
+  std::vector<long> fails(G.band.size(), 0);
+  detail::parallel_for(static_cast<long>(G.band.size()), G.threads, [&](long c, int) {
+    std::vector<PatchSeed>& s = F.starts[static_cast<size_t>(c)];
+    if (s.empty())
+      s.push_back(F.q_d[static_cast<size_t>(c * per)].seed);
+    long& failed = fails[static_cast<size_t>(c)];
+    for (int q = 0; q < 8; ++q) {
+      const long n = G.C.corner_node(G.band[static_cast<size_t>(c)], q);
+      failed += complete_starts(G.B, s, G.N.row(n).transpose(), G.node_d[static_cast<size_t>(n)],
+                                tolerance);
+    }
+    for (int r = 1; r < per; ++r)
+      failed += complete_starts(G.B, s, F.Q.row(c * per + r).transpose(),
+                                F.q_d[static_cast<size_t>(c * per + r)], tolerance);
+  });
+  R.check_points = static_cast<long>(G.band.size()) * (8 + checks_per_cell);
+  for (long f : fails)
+    R.check_failures += f;
+  return F;
+}
+
+// The boundary points that must have omega = 0: the input section points and the samples.
+std::vector<std::pair<Vector3d, PatchSeed>>
+boundary_points(const LoftResult& L, const BodyPatches& B, const std::vector<PatchSeed>& samples) {
+  std::vector<std::pair<Vector3d, PatchSeed>> surface;
+  for (size_t k = 0; k < L.sections.size(); ++k)
+    for (Index i = 0; i < L.sections[k].points.rows(); ++i)
+      surface.push_back({L.sections[k].points.row(i).transpose(),
+                         PatchSeed{0, L.point_u[k](i), L.section_v(static_cast<Index>(k))}});
+  for (const PatchSeed& at : samples)
+    surface.push_back({evaluate(B, at), at});
+  return surface;
+}
+
+// Every sheet of the boundary that passes through a cell gets a start there (two sheets meet
+// at a sharp trailing edge: a start on one side does not reach the other side's points);
+// sheets by patch and by outward normals within 30 degrees. Then every boundary point the
+// starts of its cell do not find exactly gets its own start.
+void cover_sheets(const BodyGrid& G, const std::vector<std::pair<Vector3d, PatchSeed>>& surface,
+                  std::vector<std::vector<PatchSeed>>& starts) {
+  const auto normal_at = [&](const PatchSeed& at) {
+    const SurfaceJet J = evaluate_jet(G.B.patches[static_cast<size_t>(at.patch)], at.u, at.v);
+    const Vector3d n = J.Su.cross(J.Sv);
+    return n.norm() > 0 ? Vector3d(G.B.orientation[static_cast<size_t>(at.patch)] * n.normalized())
+                        : Vector3d::Zero();
+  };
+  std::vector<std::vector<Vector3d>> sheet(starts.size());
+  for (size_t c = 0; c < starts.size(); ++c)
+    for (const PatchSeed& at : starts[c])
+      sheet[c].push_back(normal_at(at));
+  for (const auto& [p, at] : surface) {
+    const size_t k = G.band_slot(p);
+    const Vector3d n = normal_at(at);
+    bool covered = false;
+    for (size_t j = 0; j < starts[k].size() && !covered; ++j)
+      covered = starts[k][j].patch == at.patch && sheet[k][j].dot(n) > std::cos(M_PI / 6);
+    if (!covered) {
+      starts[k].push_back(at);
+      sheet[k].push_back(n);
+    }
+  }
+  for (const auto& [p, at] : surface) {
+    std::vector<PatchSeed>& s = starts[G.band_slot(p)];
+    const BodyDistance near = body_distance(G.B, p, s.data(), static_cast<int>(s.size()));
+    if (!near.found || std::abs(near.distance) > 1e-13 * G.diag)
+      s.push_back(at);
+  }
+}
+
+// Validation on checks_per_cell independent random points per band cell (failures get their
+// own start as well).
+void validate_near_field(const BodyGrid& G, int checks_per_cell,
+                         std::vector<std::vector<PatchSeed>>& starts, SectionBodyReport& R,
+                         const std::function<void(const std::string&)>& progress) {
+  const MatrixXd V = random_points(G.C, G.band, checks_per_cell, 1);
+  progress("validating the near field at " + std::to_string(V.rows()) + " points");
+  const std::vector<BodyDistance> v_d = G.proj.distances(V, G.threads);
+  R.validation_points = V.rows();
+  for (Index r = 0; r < V.rows(); ++r) {
+    std::vector<PatchSeed>& s = starts[static_cast<size_t>(r / checks_per_cell)];
+    R.validation_failures +=
+        complete_starts(G.B, s, V.row(r).transpose(), v_d[static_cast<size_t>(r)], 1e-9 * G.diag);
+  }
+}
+
+// Measured: the far field's error beyond the inner band (at the check points), and omega on
+// the boundary points, which must vanish (a throw otherwise: the exactness guarantee).
+void measure_body(const SectionBodyModel& M, const NearField& F,
+                  const std::vector<std::pair<Vector3d, PatchSeed>>& surface, double diag,
+                  SectionBodyReport& R) {
+  const CubicGrid far = cubic_grid(M.grid.values, M.grid.origin, M.grid.h, M.grid.n);
+  for (Index r = 0; r < F.Q.rows(); ++r)
+    if (std::abs(F.q_d[static_cast<size_t>(r)].distance) >= M.band_inner)
+      R.max_far_error = std::max(R.max_far_error, std::abs(evaluate(far, F.Q.row(r).transpose()) -
+                                                           F.q_d[static_cast<size_t>(r)].distance));
+  Points3 S(static_cast<Index>(surface.size()), 3);
+  for (size_t i = 0; i < surface.size(); ++i)
+    S.row(static_cast<Index>(i)) = surface[i].first.transpose();
+  Eigen::VectorXd w(S.rows());
+  section_body_function(M).value(S, w);
+  R.max_surface_omega = S.rows() > 0 ? w.cwiseAbs().maxCoeff() : 0.0;
+  if (!(R.max_surface_omega <= 1e-12 * diag))
+    throw std::runtime_error("section body: |omega| = " + std::to_string(R.max_surface_omega) +
+                             " on the boundary exceeds 1e-12 x the diagonal");
+}
+
 } // namespace
 
 SectionBodyBuild build_section_body(const std::vector<Section>& sections,
@@ -224,15 +450,13 @@ SectionBodyBuild build_section_body(const std::vector<Section>& sections,
 
 SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOptions& o) {
   check_body_options(o);
-  const auto progress = [&](const std::string& s) {
+  const std::function<void(const std::string&)> progress = [&](const std::string& s) {
     if (o.progress)
       o.progress(s);
   };
-  const int threads = detail::resolve_threads(o.threads);
   SectionBodyBuild out;
   SectionBodyReport& R = out.report;
   SectionBodyModel& M = out.model;
-
   R.loft = loft;
   const LoftResult& L = R.loft;
   M.side = L.surface;
@@ -240,206 +464,57 @@ SectionBodyBuild build_section_body(const LoftResult& loft, const SectionBodyOpt
   const BodyPatches B = body_patches(M.side, M.edge_u);
   const BodyProjection proj(B);
 
-  // Box and grid.
   std::vector<PatchSeed> edge_samples;
   const std::vector<PatchSeed> samples = boundary_samples(B, kSampleU, kSampleV, edge_samples);
   Eigen::AlignedBox3d bbox;
   for (const PatchSeed& at : samples)
     bbox.extend(evaluate(B, at));
   R.bbox_diagonal = bbox.diagonal().norm();
-  const double diag = R.bbox_diagonal;
-  M.box = Eigen::AlignedBox3d(bbox.min().array() - o.margin * diag,
-                              bbox.max().array() + o.margin * diag);
-  Cells C;
-  C.grid.h = M.box.sizes().maxCoeff() / o.resolution;
-  C.grid.origin = M.box.min().array() - 2 * C.grid.h;
-  for (int a = 0; a < 3; ++a)
-    C.grid.n(a) = static_cast<int>(std::ceil(M.box.sizes()(a) / C.grid.h)) + 5;
-  C.m = C.grid.n - 1;
-  const double h = C.grid.h;
-  M.band_inner = o.band_inner * h;
-  M.band_outer = o.band_outer * h;
-  const double tolerance = 1e-9 * diag;
-
-  // Far field: the exact signed distance at the nodes.
-  const long nodes = static_cast<long>(C.grid.n(0)) * C.grid.n(1) * C.grid.n(2);
-  progress("exact signed distance at " + std::to_string(nodes) + " grid nodes");
-  MatrixXd N(nodes, 3);
-  for (int k = 0; k < C.grid.n(2); ++k)
-    for (int j = 0; j < C.grid.n(1); ++j)
-      for (int i = 0; i < C.grid.n(0); ++i)
-        N.row(C.node(i, j, k)) = (C.grid.origin + h * Vector3d(i, j, k)).transpose();
-  const std::vector<BodyDistance> node_d = proj.distances(N, threads);
-  C.grid.values.resize(static_cast<size_t>(nodes));
-  for (long i = 0; i < nodes; ++i)
-    C.grid.values[static_cast<size_t>(i)] = node_d[static_cast<size_t>(i)].distance;
+  BodyGrid G{B,
+             proj,
+             model_grid(bbox, o, M),
+             {},
+             {},
+             {},
+             {},
+             detail::resolve_threads(o.threads),
+             R.bbox_diagonal};
+  const Cells& C = G.C;
+  progress("exact signed distance at " +
+           std::to_string(static_cast<long>(C.grid.n(0)) * C.grid.n(1) * C.grid.n(2)) +
+           " grid nodes");
+  far_field(G);
   M.grid = C.grid;
+  find_band(G, M.band_outer);
+  R.band_cells = static_cast<long>(G.band.size());
 
-  // Band cells: some point of the cell may be within band_outer of the boundary (|d| is
-  // 1-Lipschitz and every point of a cell lies within h sqrt(3) of each corner).
-  std::vector<long> band;
-  std::vector<long> slot(static_cast<size_t>(C.count()), -1);
-  for (long c = 0; c < C.count(); ++c) {
-    const long i = c % C.m(0), j = (c / C.m(0)) % C.m(1),
-               k = c / (static_cast<long>(C.m(0)) * C.m(1));
-    double lo = INFINITY;
-    for (int q = 0; q < 8; ++q)
-      lo = std::min(
-          lo, std::abs(node_d[static_cast<size_t>(C.node(int(i + (q & 1)), int(j + ((q >> 1) & 1)),
-                                                         int(k + (q >> 2))))]
-                           .distance));
-    if (lo < M.band_outer + h * std::sqrt(3.0)) {
-      slot[static_cast<size_t>(c)] = static_cast<long>(band.size());
-      band.push_back(c);
-    }
-  }
-  R.band_cells = static_cast<long>(band.size());
-
-  // Starts: the foot of the cell centre, completed by the corners and random check points whose
-  // exact foot the starts do not find.
-  const int per = 1 + o.checks_per_cell;
-  MatrixXd Q = random_points(C, band, per, 0);
-  for (size_t c = 0; c < band.size(); ++c)
-    Q.row(static_cast<Index>(c) * per) =
-        (C.corner(band[c]) + Vector3d::Constant(0.5 * h)).transpose();
-  progress("near-field starts for " + std::to_string(band.size()) + " band cells (" +
-           std::to_string(Q.rows()) + " exact feet)");
-  const std::vector<BodyDistance> q_d = proj.distances(Q, threads);
-  std::vector<std::vector<PatchSeed>> starts(band.size());
-  // Cells the boundary may cross get the centre's foot on every patch that comes within the
-  // cell's circumscribed sphere: a sliver of a cap or a side in a corner of the cell has no
-  // samples there, but its points lie near that foot.
-  const double half_diagonal = 0.5 * std::sqrt(3.0) * h;
-  std::vector<size_t> crossed;
-  for (size_t c = 0; c < band.size(); ++c)
-    if (std::abs(q_d[c * static_cast<size_t>(per)].distance) <= half_diagonal)
-      crossed.push_back(c);
-  MatrixXd centres(static_cast<Index>(crossed.size()), 3);
-  for (size_t i = 0; i < crossed.size(); ++i)
-    centres.row(static_cast<Index>(i)) = Q.row(static_cast<Index>(crossed[i]) * per);
-  for (int patch = 0; patch < 3; ++patch) {
-    const std::vector<BodyDistance> f = proj.distances(centres, threads, patch);
-    for (size_t i = 0; i < crossed.size(); ++i)
-      if (f[i].found && std::abs(f[i].distance) <= half_diagonal)
-        starts[crossed[i]].push_back(f[i].seed);
-  }
-  std::vector<long> fails(band.size(), 0);
-  detail::parallel_for(static_cast<long>(band.size()), threads, [&](long c, int) {
-    std::vector<PatchSeed>& s = starts[static_cast<size_t>(c)];
-    if (s.empty())
-      s.push_back(q_d[static_cast<size_t>(c * per)].seed);
-    const long cell = band[static_cast<size_t>(c)];
-    const long i = cell % C.m(0), j = (cell / C.m(0)) % C.m(1),
-               k = cell / (static_cast<long>(C.m(0)) * C.m(1));
-    for (int q = 0; q < 8; ++q) {
-      const long n = C.node(int(i + (q & 1)), int(j + ((q >> 1) & 1)), int(k + (q >> 2)));
-      fails[static_cast<size_t>(c)] +=
-          complete_starts(B, s, N.row(n).transpose(), node_d[static_cast<size_t>(n)], tolerance);
-    }
-    for (int r = 1; r < per; ++r)
-      fails[static_cast<size_t>(c)] += complete_starts(
-          B, s, Q.row(c * per + r).transpose(), q_d[static_cast<size_t>(c * per + r)], tolerance);
-  });
-  R.check_points = static_cast<long>(band.size()) * (8 + o.checks_per_cell);
-  for (long f : fails)
-    R.check_failures += f;
-
-  // The boundary itself: input section points and dense samples must have omega = 0.
-  std::vector<std::pair<Vector3d, PatchSeed>> surface;
-  for (size_t k = 0; k < L.sections.size(); ++k)
-    for (Index i = 0; i < L.sections[k].points.rows(); ++i)
-      surface.push_back({L.sections[k].points.row(i).transpose(),
-                         PatchSeed{0, L.point_u[k](i), L.section_v(static_cast<Index>(k))}});
-  for (const PatchSeed& at : samples)
-    surface.push_back({evaluate(B, at), at});
+  NearField F = near_field_starts(G, o.checks_per_cell, R, progress);
+  const auto surface = boundary_points(L, B, samples);
   R.surface_points = static_cast<long>(surface.size());
-  // The band cell of a boundary point (its index into starts); every boundary point has one.
-  const auto band_slot = [&](const Vector3d& p) {
-    const long c = C.cell_of(p);
-    if (c < 0 || slot[static_cast<size_t>(c)] < 0)
-      throw std::runtime_error("section body: a boundary point lies outside the band cells");
-    return static_cast<size_t>(slot[static_cast<size_t>(c)]);
-  };
-  // Every sheet of the boundary that passes through a cell gets a start there (two sheets meet
-  // at a sharp trailing edge: a start on one side does not reach the other side's points);
-  // sheets by patch and by outward normals within 30 degrees.
-  const auto normal_at = [&](const PatchSeed& at) {
-    const SurfaceJet J = evaluate_jet(B.patches[static_cast<size_t>(at.patch)], at.u, at.v);
-    const Vector3d n = J.Su.cross(J.Sv);
-    return n.norm() > 0 ? Vector3d(B.orientation[static_cast<size_t>(at.patch)] * n.normalized())
-                        : Vector3d::Zero();
-  };
-  std::vector<std::vector<Vector3d>> sheet(band.size());
-  for (size_t c = 0; c < band.size(); ++c)
-    for (const PatchSeed& at : starts[c])
-      sheet[c].push_back(normal_at(at));
-  for (const auto& [p, at] : surface) {
-    const size_t k = band_slot(p);
-    const Vector3d n = normal_at(at);
-    bool covered = false;
-    for (size_t j = 0; j < starts[k].size() && !covered; ++j)
-      covered = starts[k][j].patch == at.patch && sheet[k][j].dot(n) > std::cos(M_PI / 6);
-    if (!covered) {
-      starts[k].push_back(at);
-      sheet[k].push_back(n);
-    }
-  }
-  for (const auto& [p, at] : surface) {
-    std::vector<PatchSeed>& s = starts[band_slot(p)];
-    const BodyDistance near = body_distance(B, p, s.data(), static_cast<int>(s.size()));
-    if (!near.found || std::abs(near.distance) > 1e-13 * diag)
-      s.push_back(at);
-  }
-
+  cover_sheets(G, surface, F.starts);
   // Random boundary points: each one its starts do not find gets its own start (rare points
   // between the samples: in folds, or on a thin edge's other sheet when a cell holds only a
   // sliver of it). Uniform rounds over the whole boundary, then rounds near the sharp edges.
   const auto start_set = [&](const Vector3d& p) -> std::vector<PatchSeed>& {
-    return starts[band_slot(p)];
+    return F.starts[G.band_slot(p)];
   };
   for (int round = 0; round < 2; ++round)
-    R.boundary_misses = cover_random_points(B, uniform_boundary_points(B, round), start_set, diag);
+    R.boundary_misses =
+        cover_random_points(B, uniform_boundary_points(B, round), start_set, R.bbox_diagonal);
   for (int round = 0; round < 2; ++round)
-    cover_random_points(B, edge_boundary_points(B, edge_samples, round), start_set, diag);
+    cover_random_points(B, edge_boundary_points(B, edge_samples, round), start_set,
+                        R.bbox_diagonal);
+  if (o.checks_per_cell > 0)
+    validate_near_field(G, o.checks_per_cell, F.starts, R, progress);
 
-  // Validation on independent points (failures get their own start as well).
-  if (o.checks_per_cell > 0) {
-    const MatrixXd V = random_points(C, band, o.checks_per_cell, 1);
-    progress("validating the near field at " + std::to_string(V.rows()) + " points");
-    const std::vector<BodyDistance> v_d = proj.distances(V, threads);
-    R.validation_points = V.rows();
-    for (Index r = 0; r < V.rows(); ++r) {
-      std::vector<PatchSeed>& s = starts[static_cast<size_t>(r / o.checks_per_cell)];
-      R.validation_failures +=
-          complete_starts(B, s, V.row(r).transpose(), v_d[static_cast<size_t>(r)], tolerance);
-    }
-  }
-
-  // The model.
   M.band_start.push_back(0);
-  for (size_t c = 0; c < band.size(); ++c) {
-    M.band_cells.push_back(band[c]);
-    M.seeds.insert(M.seeds.end(), starts[c].begin(), starts[c].end());
+  for (size_t c = 0; c < G.band.size(); ++c) {
+    M.band_cells.push_back(G.band[c]);
+    M.seeds.insert(M.seeds.end(), F.starts[c].begin(), F.starts[c].end());
     M.band_start.push_back(static_cast<std::int64_t>(M.seeds.size()));
   }
   R.seeds = static_cast<long>(M.seeds.size());
-
-  // Measured: the far field's error beyond the inner band, omega on the boundary.
-  const ImplicitFunction f = section_body_function(M);
-  const CubicGrid far = cubic_grid(M.grid.values, M.grid.origin, M.grid.h, M.grid.n);
-  for (Index r = 0; r < Q.rows(); ++r)
-    if (std::abs(q_d[static_cast<size_t>(r)].distance) >= M.band_inner)
-      R.max_far_error = std::max(R.max_far_error, std::abs(evaluate(far, Q.row(r).transpose()) -
-                                                           q_d[static_cast<size_t>(r)].distance));
-  Points3 S(static_cast<Index>(surface.size()), 3);
-  for (size_t i = 0; i < surface.size(); ++i)
-    S.row(static_cast<Index>(i)) = surface[i].first.transpose();
-  Eigen::VectorXd w(S.rows());
-  f.value(S, w);
-  R.max_surface_omega = S.rows() > 0 ? w.cwiseAbs().maxCoeff() : 0.0;
-  if (!(R.max_surface_omega <= 1e-12 * diag))
-    throw std::runtime_error("section body: |omega| = " + std::to_string(R.max_surface_omega) +
-                             " on the boundary exceeds 1e-12 x the diagonal");
+  measure_body(M, F, surface, R.bbox_diagonal, R);
   return out;
 }
 
