@@ -41,14 +41,8 @@ std::uint64_t edge_key(long a, long b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
 }
 
-} // namespace
-
-bool MeshReport::watertight() const {
-  return faces > 0 && boundary_edges == 0 && nonmanifold_edges == 0 && nonmanifold_vertices == 0 &&
-         consistently_oriented && degenerate_faces == 0;
-}
-
-MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+// The shapes and the face indices (each in [0, #V)).
+void check_mesh_input(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   if (V.cols() != 3 || F.cols() != 3)
     throw std::invalid_argument("check_mesh: V and F must have 3 columns, got " +
                                 std::to_string(V.cols()) + " and " + std::to_string(F.cols()));
@@ -61,17 +55,17 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
         throw std::invalid_argument("check_mesh: face " + std::to_string(f) + " has vertex index " +
                                     std::to_string(F(f, j)) + " outside [0, " + std::to_string(nv) +
                                     ")");
-  MeshReport r;
-  r.vertices = nv;
-  r.faces = nf;
+}
 
-  // Geometry: area, volume, angles, aspect ratios, degenerate faces.
+// Geometry: area, volume (divergence theorem about the box centre), angles, aspect ratios,
+// degenerate faces.
+void measure_faces(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, MeshReport& r) {
   const Eigen::RowVector3d origin =
-      nv > 0 ? Eigen::RowVector3d(0.5 * (V.colwise().minCoeff() + V.colwise().maxCoeff()))
-             : Eigen::RowVector3d::Zero();
+      V.rows() > 0 ? Eigen::RowVector3d(0.5 * (V.colwise().minCoeff() + V.colwise().maxCoeff()))
+                   : Eigen::RowVector3d::Zero();
   double min_angle = M_PI, max_aspect = 0, volume = 0, area = 0;
   bool any_good = false;
-  for (long f = 0; f < nf; ++f) {
+  for (long f = 0; f < long(F.rows()); ++f) {
     const Eigen::Vector3d a = V.row(F(f, 0)) - origin, b = V.row(F(f, 1)) - origin,
                           c = V.row(F(f, 2)) - origin;
     volume += a.dot(b.cross(c));
@@ -92,8 +86,13 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   r.volume = volume / 6.0;
   r.min_angle_deg = any_good ? min_angle * 180.0 / M_PI : 0.0;
   r.max_aspect_ratio = any_good ? max_aspect : 0.0;
+}
 
-  // Edges: (key, direction) sorted; a direction bit of 0 means the face runs min -> max.
+// Edges: boundary and non-manifold edges, orientation, Euler characteristic and connected
+// components, from the half-edges (key, direction) sorted; a direction bit of 0 means the face
+// runs min -> max.
+void count_edges(const Eigen::MatrixXi& F, long nv, MeshReport& r) {
+  const long nf = long(F.rows());
   std::vector<std::uint64_t> half(std::size_t(3 * nf));
   for (long f = 0; f < nf; ++f)
     for (int j = 0; j < 3; ++j) {
@@ -127,21 +126,21 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   r.euler = nv - edges + nf;
   for (long i = 0; i < nv; ++i)
     r.components += graph.find(i) == i;
+}
 
-  // Vertex fans: corners (f, j) at the same vertex are linked across each edge (v, w) that has
-  // exactly two faces; a vertex is non-manifold when its corners form more than one fan.
+// Vertex fans: corners (f, j) at the same vertex are linked across each edge (v, w) that has
+// exactly two faces; a vertex is non-manifold when its corners form more than one fan.
+long count_nonmanifold_vertices(const Eigen::MatrixXi& F) {
+  const long nf = long(F.rows());
   struct Spoke {
     long v, w, corner;
   };
   std::vector<Spoke> spokes;
   spokes.reserve(std::size_t(6 * nf));
-  std::vector<char> used(std::size_t(nv), 0);
   for (long f = 0; f < nf; ++f)
     for (int j = 0; j < 3; ++j) {
-      const long v = F(f, j);
-      used[std::size_t(v)] = 1;
-      spokes.push_back({v, F(f, (j + 1) % 3), 3 * f + j});
-      spokes.push_back({v, F(f, (j + 2) % 3), 3 * f + j});
+      spokes.push_back({F(f, j), F(f, (j + 1) % 3), 3 * f + j});
+      spokes.push_back({F(f, j), F(f, (j + 2) % 3), 3 * f + j});
     }
   std::sort(spokes.begin(), spokes.end(), [](const Spoke& x, const Spoke& y) {
     return x.v != y.v ? x.v < y.v : x.w != y.w ? x.w < y.w : x.corner < y.corner;
@@ -155,9 +154,9 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
       corners.unite(spokes[s].corner, spokes[s + 1].corner);
     s = e;
   }
+  long nonmanifold = 0;
   for (std::size_t s = 0; s < spokes.size();) {
     std::size_t e = s;
-    long fans = 0;
     long last_root = -1;
     std::vector<long> roots;
     while (e < spokes.size() && spokes[e].v == spokes[s].v) {
@@ -168,12 +167,32 @@ MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
       ++e;
     }
     std::sort(roots.begin(), roots.end());
-    fans = long(std::unique(roots.begin(), roots.end()) - roots.begin());
-    r.nonmanifold_vertices += fans > 1;
+    nonmanifold += std::unique(roots.begin(), roots.end()) - roots.begin() > 1;
     s = e;
   }
+  return nonmanifold;
+}
 
+} // namespace
+
+bool MeshReport::watertight() const {
+  return faces > 0 && boundary_edges == 0 && nonmanifold_edges == 0 && nonmanifold_vertices == 0 &&
+         consistently_oriented && degenerate_faces == 0;
+}
+
+MeshReport check_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  check_mesh_input(V, F);
+  MeshReport r;
+  r.vertices = long(V.rows());
+  r.faces = long(F.rows());
+  measure_faces(V, F, r);
+  count_edges(F, r.vertices, r);
+  r.nonmanifold_vertices = count_nonmanifold_vertices(F);
+  std::vector<char> used(std::size_t(r.vertices), 0);
+  for (Eigen::Index i = 0; i < F.size(); ++i)
+    used[std::size_t(F.data()[i])] = 1;
   const bool all_used = std::all_of(used.begin(), used.end(), [](char c) { return c != 0; });
+  // Genus from Euler's formula V - E + F = 2 (C - g), only for closed oriented 2-manifolds.
   if (r.boundary_edges == 0 && r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0 &&
       r.consistently_oriented && all_used)
     r.genus = (2 * r.components - r.euler) / 2;
