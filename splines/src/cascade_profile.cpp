@@ -124,21 +124,23 @@ bool crosses(const Vector2d& p, const Vector2d& q, const Vector2d& r, const Vect
   return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
-} // namespace
+// Does the pose's direction point towards b?
+bool ahead(const CurvePose& a, const Vector2d& b) {
+  return (b - a.point).dot(Vector2d(std::cos(a.angle), std::sin(a.angle))) > 0;
+}
 
-CascadeProfile cascade_profile(const CascadeParameters& p, const CascadeOptions& o) {
-  check_parameters(p, o);
+// Pitch, throat, the edge circles and the key points C1, C2, C3, K1, K2 (digest §6.1), checked
+// for consistency: the sides run from the trailing edge forward to the leading edge.
+void key_points(const CascadeParameters& p, CascadeProfile& P) {
   const double B = p.axial_width, r1 = p.le_radius, r2 = p.te_radius;
   const double by = p.stagger_deg * kDeg, b1 = p.inlet_angle_deg * kDeg,
                b2 = p.outlet_angle_deg * kDeg, g1 = p.le_wedge_deg * kDeg,
                g2 = p.te_wedge_deg * kDeg, delta = p.te_bend_deg * kDeg;
-  CascadeProfile P;
   P.pitch = p.relative_pitch * B;
   P.max_thickness = p.max_thickness * B;
   P.throat = p.throat > 0 ? p.throat : P.pitch * std::sin(b2); // [R] default
   require(P.throat < P.pitch,
           "throat " + num(P.throat) + " must be smaller than the pitch " + num(P.pitch));
-  // Edge circles and key points, digest §6.1.
   P.O2 = Vector2d(r2, r2 / std::tan(g2 / 2));
   P.O1 = Vector2d(B - r1, ((B - r2) * std::cos(by) + r1) / std::sin(by));
   P.C2 = {Vector2d(r2 * (1 - std::cos(b2 - g2 / 2)), P.O2.y() + r2 * std::sin(b2 - g2 / 2)),
@@ -151,10 +153,6 @@ CascadeProfile cascade_profile(const CascadeParameters& p, const CascadeOptions&
   P.C3 = {P.O2 + Vector2d(0, P.pitch) +
               (P.throat + r2) * Vector2d(std::sin(phi_c3), -std::cos(phi_c3)),
           phi_c3};
-  // Consistency: the sides run from the trailing edge forward to the leading edge.
-  const auto ahead = [](const CurvePose& a, const Vector2d& b) {
-    return (b - a.point).dot(Vector2d(std::cos(a.angle), std::sin(a.angle))) > 0;
-  };
   require((P.O1 - P.O2).norm() > r1 + r2, "the edge circles overlap");
   require(ahead(P.C2, P.C3.point) && P.C3.point.x() < P.C1.point.x(),
           "inconsistent angles: the throat point C3 (" + num(P.C3.point.x()) + ", " +
@@ -164,21 +162,22 @@ CascadeProfile cascade_profile(const CascadeParameters& p, const CascadeOptions&
   require(P.C3.angle > P.C1.angle && P.K2.angle > P.K1.angle,
           "inconsistent angles: the sides must turn clockwise from the trailing to the leading "
           "edge (outlet angle, inlet angle and wedge angles)");
+}
 
-  const ShootingOptions& so = o.shooting;
-  P.suction = fit_side(P.C2, P.C3, P.C1, o.joint, so, P.miss);
-
-  // Point A: the maximum-thickness circle (centre A + (c_m/2) n, n the inward normal, on the
-  // right of the suction side's direction) has its centre at x = B (1 - position).
-  const double xm = B * (1 - p.max_thickness_position), half = P.max_thickness / 2;
+// Point A: the maximum-thickness circle (centre A + (c_m/2) n, n the inward normal, on the
+// right of the suction side's direction) has its centre at x = B (1 - position); the first
+// crossing seen from the leading edge (a 200-step scan), then bisection.
+CurvePose max_thickness_point(const CascadeParameters& p, const CascadeProfile& P,
+                              const QuadratureOptions& q) {
+  const double xm = p.axial_width * (1 - p.max_thickness_position), half = P.max_thickness / 2;
   const double Ls = side_length(P.suction);
   const auto centre_x = [&](double s) {
-    const CurvePose a = side_pose(P.suction, s, so.quadrature);
+    const CurvePose a = side_pose(P.suction, s, q);
     return a.point.x() + half * std::sin(a.angle) - xm;
   };
   const int scan = 200;
   double hi = Ls, fhi = centre_x(hi), lo = -1, flo = 0;
-  for (int i = scan - 1; i >= 0; --i) { // first crossing seen from the leading edge
+  for (int i = scan - 1; i >= 0; --i) {
     const double s = Ls * i / scan, f = centre_x(s);
     if ((f <= 0) != (fhi <= 0)) {
       lo = s;
@@ -198,20 +197,20 @@ CascadeProfile cascade_profile(const CascadeParameters& p, const CascadeOptions&
     else
       hi = m;
   }
-  P.A = side_pose(P.suction, 0.5 * (lo + hi), so.quadrature);
-  P.K3 = {P.A.point + P.max_thickness * Vector2d(std::sin(P.A.angle), -std::cos(P.A.angle)),
-          P.A.angle};
-  require(ahead(P.K2, P.K3.point) && P.K3.point.x() < P.K1.point.x(),
-          "inconsistent maximum thickness: the point K3 opposite the maximum-thickness point "
-          "does not lie between the edges on the pressure side (reduce the thickness or move "
-          "its position)");
-  P.pressure = fit_side(P.K2, P.K3, P.K1, o.joint, so, P.miss);
+  return side_pose(P.suction, 0.5 * (lo + hi), q);
+}
 
-  // Closed point list from the TE middle towards the suction side (see header).
+// Closed point list from the TE middle towards the suction side (see header): edge arcs at
+// even angles, sides at cosine-spaced arc lengths.
+MatrixXd profile_points(const CascadeParameters& p, const CascadeProfile& P,
+                        const CascadeOptions& o) {
+  const double r1 = p.le_radius, r2 = p.te_radius, b1 = p.inlet_angle_deg * kDeg,
+               b2 = p.outlet_angle_deg * kDeg, g1 = p.le_wedge_deg * kDeg,
+               g2 = p.te_wedge_deg * kDeg;
   const int ne = o.edge_intervals, ns = o.side_intervals;
-  P.points.resize(2 * (ne + ns), 2);
+  MatrixXd X(2 * (ne + ns), 2);
   Index row = 0;
-  const auto put = [&](const Vector2d& v) { P.points.row(row++) = v.transpose(); };
+  const auto put = [&](const Vector2d& v) { X.row(row++) = v.transpose(); };
   const double tc2 = M_PI - (b2 - g2 / 2), tk2 = 2 * M_PI - (b2 + g2 / 2);
   const auto te = [&](int i) {
     const double th = tc2 + (tk2 - tc2) * i / ne;
@@ -223,39 +222,63 @@ CascadeProfile cascade_profile(const CascadeParameters& p, const CascadeOptions&
     return Vector2d(P.O1 + r1 * Vector2d(std::cos(th), std::sin(th)));
   };
   const auto cosine = [&](int i, double L) { return L * (1 - std::cos(M_PI * i / ns)) / 2; };
-  const double Lp = side_length(P.pressure);
+  const QuadratureOptions& q = o.shooting.quadrature;
+  const double Ls = side_length(P.suction), Lp = side_length(P.pressure);
   for (int i = ne / 2; i >= 1; --i)
     put(te(i));
   for (int i = 0; i < ns; ++i)
-    put(side_pose(P.suction, cosine(i, Ls), so.quadrature).point);
+    put(side_pose(P.suction, cosine(i, Ls), q).point);
   for (int i = 0; i < ne; ++i)
     put(le(i));
   for (int i = ns; i >= 1; --i)
-    put(side_pose(P.pressure, cosine(i, Lp), so.quadrature).point);
+    put(side_pose(P.pressure, cosine(i, Lp), q).point);
   for (int i = ne; i > ne / 2; --i)
     put(te(i));
-  if (!P.points.allFinite())
+  if (!X.allFinite())
     throw std::runtime_error("cascade profile: non-finite point (please report)");
-  // The sides must not cross each other or themselves: a simple closed polygon.
-  const Index n = P.points.rows();
+  return X;
+}
+
+// The sides must not cross each other or themselves (a simple closed polygon), and the passage
+// must stay open: the profile may not touch its neighbour one pitch away.
+void check_constructive(const MatrixXd& X, double pitch) {
+  const Index n = X.rows();
   for (Index i = 0; i < n; ++i)
     for (Index j = i + 2; j < n; ++j) {
       if (i == 0 && j == n - 1)
         continue;
-      if (crosses(P.points.row(i), P.points.row((i + 1) % n), P.points.row(j),
-                  P.points.row((j + 1) % n)))
+      if (crosses(X.row(i), X.row((i + 1) % n), X.row(j), X.row((j + 1) % n)))
         bad("non-constructive profile: the contour crosses itself (the suction and pressure sides "
             "intersect; the book warns that bad combinations of maximum thickness and its "
             "position do this)");
     }
-  // The passage must stay open: the profile may not touch its neighbour one pitch away.
-  const Vector2d shift(0, P.pitch);
+  const Vector2d shift(0, pitch);
   for (Index i = 0; i < n; ++i)
     for (Index j = 0; j < n; ++j)
-      if (crosses(P.points.row(i), P.points.row((i + 1) % n), P.points.row(j) + shift.transpose(),
-                  P.points.row((j + 1) % n) + shift.transpose()))
+      if (crosses(X.row(i), X.row((i + 1) % n), X.row(j) + shift.transpose(),
+                  X.row((j + 1) % n) + shift.transpose()))
         bad("non-constructive profile: it overlaps its neighbour one pitch away (the passage "
             "is closed; reduce the thickness or increase the pitch)");
+}
+
+} // namespace
+
+CascadeProfile cascade_profile(const CascadeParameters& p, const CascadeOptions& o) {
+  check_parameters(p, o);
+  CascadeProfile P;
+  key_points(p, P);
+  const ShootingOptions& so = o.shooting;
+  P.suction = fit_side(P.C2, P.C3, P.C1, o.joint, so, P.miss);
+  P.A = max_thickness_point(p, P, so.quadrature);
+  P.K3 = {P.A.point + P.max_thickness * Vector2d(std::sin(P.A.angle), -std::cos(P.A.angle)),
+          P.A.angle};
+  require(ahead(P.K2, P.K3.point) && P.K3.point.x() < P.K1.point.x(),
+          "inconsistent maximum thickness: the point K3 opposite the maximum-thickness point "
+          "does not lie between the edges on the pressure side (reduce the thickness or move "
+          "its position)");
+  P.pressure = fit_side(P.K2, P.K3, P.K1, o.joint, so, P.miss);
+  P.points = profile_points(p, P, o);
+  check_constructive(P.points, P.pitch);
   return P;
 }
 
