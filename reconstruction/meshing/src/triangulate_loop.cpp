@@ -98,16 +98,10 @@ void delaunay_flips(const Eigen::MatrixX2d& Q, const Side& side, Eigen::MatrixXi
   }
 }
 
-} // namespace
-
-Eigen::MatrixXi triangulate_loop(const Eigen::MatrixXd& P) {
+// The loop in its best-fit plane: the Newell normal (the loop's vector area) through the
+// centroid; with the basis (e1, e2, normal) right-handed the loop runs counter-clockwise.
+Eigen::MatrixX2d best_fit_plane_coordinates(const Eigen::MatrixXd& P) {
   const int n = int(P.rows());
-  if (n < 3 || P.cols() != 3)
-    throw std::invalid_argument("triangulate_loop: need at least 3 points in 3D, got " +
-                                std::to_string(P.rows()) + " by " + std::to_string(P.cols()));
-  Eigen::MatrixXi T(n - 2, 3);
-  // Best-fit plane: Newell normal (the loop's vector area) through the centroid. Projected with
-  // the basis (e1, e2, normal) right-handed, the loop runs counter-clockwise in 2D.
   Eigen::Vector3d N = Eigen::Vector3d::Zero();
   const Eigen::RowVector3d c = P.colwise().mean();
   for (int i = 0; i < n; ++i) {
@@ -124,26 +118,18 @@ Eigen::MatrixXi triangulate_loop(const Eigen::MatrixXd& P) {
     Q(i, 0) = d.dot(e1);
     Q(i, 1) = d.dot(e2);
   }
-  auto orient = [&](int a, int b, int q) {
-    return (Q(b, 0) - Q(a, 0)) * (Q(q, 1) - Q(a, 1)) - (Q(b, 1) - Q(a, 1)) * (Q(q, 0) - Q(a, 0));
-  };
-  auto same = [&](int a, int b) { return Q(a, 0) == Q(b, 0) && Q(a, 1) == Q(b, 1); };
-  // side(a, b, q): +1 / -1 when q is left / right of the line a -> b, 0 when within round-off.
-  // Points collinear in 3D stay collinear after projection only up to a few ulps of the
-  // coordinates, i.e. about eps R |ab| in orient (R the loop's size), so the threshold scales
-  // with the local edge lengths and tiny leading-edge ears stay valid. Collinear blocks a
-  // diagonal and is not convex.
-  const double R = Q.cwiseAbs().maxCoeff();
-  auto side = [&](int a, int b, int q) {
-    const double o = orient(a, b, q);
-    const double noise = 1e-13 * R * ((Q.row(b) - Q.row(a)).norm() + (Q.row(q) - Q.row(a)).norm());
-    return o > noise ? 1 : o < -noise ? -1 : 0;
-  };
-  // Smallest corner angle of triangle (a, b, c) in 3D: the ear quality.
-  auto ear_quality = [&](int a, int b, int d) {
-    return detail::min_angle(P.row(a).transpose(), P.row(b).transpose(), P.row(d).transpose());
-  };
+  return Q;
+}
 
+// Ear clipping of the counter-clockwise polygon Q, best ear first (largest smallest angle of
+// the triangle in 3D, P); when no ear is left (round-off on nearly collinear runs) the most
+// convex vertex is clipped, which keeps a topological disk. Returns the n - 2 triangles.
+template <class Orient, class Side>
+Eigen::MatrixXi clip_ears(const Eigen::MatrixXd& P, const Eigen::MatrixX2d& Q, const Orient& orient,
+                          const Side& side) {
+  const int n = int(P.rows());
+  Eigen::MatrixXi T(n - 2, 3);
+  auto same = [&](int a, int b) { return Q(a, 0) == Q(b, 0) && Q(a, 1) == Q(b, 1); };
   std::vector<int> prev(n), next(n);
   for (int i = 0; i < n; ++i) {
     prev[i] = (i + n - 1) % n;
@@ -167,11 +153,12 @@ Eigen::MatrixXi triangulate_loop(const Eigen::MatrixXd& P) {
   std::vector<double> quality(n);
   auto update = [&](int i) {
     ear[i] = is_ear(i);
-    quality[i] = ear[i] ? ear_quality(prev[i], i, next[i]) : 0.0;
+    quality[i] = ear[i] ? detail::min_angle(P.row(prev[i]).transpose(), P.row(i).transpose(),
+                                            P.row(next[i]).transpose())
+                        : 0.0;
   };
   for (int i = 0; i < n; ++i)
     update(i);
-
   int remaining = n, first = 0, t = 0;
   while (remaining > 3) {
     auto best_ear = [&]() {
@@ -210,6 +197,31 @@ Eigen::MatrixXi triangulate_loop(const Eigen::MatrixXd& P) {
     update(b);
   }
   T.row(t) << prev[first], first, next[first];
+  return T;
+}
+
+} // namespace
+
+Eigen::MatrixXi triangulate_loop(const Eigen::MatrixXd& P) {
+  if (P.rows() < 3 || P.cols() != 3)
+    throw std::invalid_argument("triangulate_loop: need at least 3 points in 3D, got " +
+                                std::to_string(P.rows()) + " by " + std::to_string(P.cols()));
+  const Eigen::MatrixX2d Q = best_fit_plane_coordinates(P);
+  auto orient = [&](int a, int b, int q) {
+    return (Q(b, 0) - Q(a, 0)) * (Q(q, 1) - Q(a, 1)) - (Q(b, 1) - Q(a, 1)) * (Q(q, 0) - Q(a, 0));
+  };
+  // side(a, b, q): +1 / -1 when q is left / right of the line a -> b, 0 when within round-off.
+  // Points collinear in 3D stay collinear after projection only up to a few ulps of the
+  // coordinates, i.e. about eps R |ab| in orient (R the loop's size), so the threshold scales
+  // with the local edge lengths and tiny leading-edge ears stay valid. Collinear blocks a
+  // diagonal and is not convex.
+  const double R = Q.cwiseAbs().maxCoeff();
+  auto side = [&](int a, int b, int q) {
+    const double o = orient(a, b, q);
+    const double noise = 1e-13 * R * ((Q.row(b) - Q.row(a)).norm() + (Q.row(q) - Q.row(a)).norm());
+    return o > noise ? 1 : o < -noise ? -1 : 0;
+  };
+  Eigen::MatrixXi T = clip_ears(P, Q, orient, side);
   delaunay_flips(Q, side, T);
   return T;
 }
