@@ -130,4 +130,31 @@ long field_index(std::string_view field, const std::string& path, long line) {
   return v;
 }
 
+std::vector<int> header_columns(const std::vector<std::string_view>& fields,
+                                const std::vector<std::string>& names, const std::string& path,
+                                long line) {
+  std::vector<int> col(names.size(), -1);
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const std::string name = ascii_lower(fields[i]);
+    for (std::size_t c = 0; c < names.size(); ++c)
+      if (name == names[c]) {
+        if (col[c] >= 0)
+          throw_input_error(path, line,
+                            "column " + name + " appears twice in the header (fields " +
+                                std::to_string(col[c] + 1) + " and " + std::to_string(i + 1) + ")");
+        col[c] = static_cast<int>(i);
+      }
+  }
+  return col;
+}
+
+std::string missing_columns(const std::vector<int>& columns, const std::vector<std::string>& names,
+                            std::size_t required) {
+  std::string missing;
+  for (std::size_t c = 0; c < required; ++c)
+    if (columns[c] < 0)
+      missing += (missing.empty() ? "" : ", ") + names[c];
+  return missing;
+}
+
 } // namespace interlin

@@ -22,6 +22,32 @@ struct Row {
   Eigen::Vector3d p;
 };
 
+// One guide from its rows: sorted by index (stable: file order without an index column),
+// checked for repeated indices and repeated points, at least 2 points.
+Guide guide_of_rows(const std::string& id, std::vector<Row>& rs, const std::string& path) {
+  std::stable_sort(rs.begin(), rs.end(),
+                   [](const Row& a, const Row& b) { return a.index < b.index; });
+  Guide g;
+  g.id = id;
+  g.points.resize(static_cast<Eigen::Index>(rs.size()), 3);
+  for (size_t i = 0; i < rs.size(); ++i) {
+    if (i > 0 && rs[i].index == rs[i - 1].index)
+      throw_input_error(path, std::max(rs[i].line, rs[i - 1].line),
+                        "duplicate index " + std::to_string(rs[i].index) + " in guide " + id +
+                            " (also on line " +
+                            std::to_string(std::min(rs[i].line, rs[i - 1].line)) + ")");
+    if (i > 0 && rs[i].p == rs[i - 1].p)
+      throw_input_error(path, rs[i].line,
+                        "point repeats the previous point of guide " + id + " (line " +
+                            std::to_string(rs[i - 1].line) + ")");
+    g.points.row(static_cast<Eigen::Index>(i)) = rs[i].p.transpose();
+    g.lines.push_back(rs[i].line);
+  }
+  if (rs.size() < 2)
+    throw_input_error(path, rs[0].line, "guide " + id + " has 1 point; need at least 2");
+  return g;
+}
+
 } // namespace
 
 GuideSet parse_guides(std::istream& in, const std::string& path) {
@@ -49,27 +75,14 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
     if (!header) {
       header = true;
       nfields = f.size();
-      for (size_t i = 0; i < f.size(); ++i) {
-        const std::string name = ascii_lower(f[i]);
-        int* slot = name == "guide"   ? &col_guide
-                    : name == "index" ? &col_index
-                    : name == "x"     ? &col_xyz[0]
-                    : name == "y"     ? &col_xyz[1]
-                    : name == "z"     ? &col_xyz[2]
-                                      : nullptr;
-        if (!slot)
-          continue;
-        if (*slot >= 0)
-          throw_input_error(path, lineno,
-                            "column " + name + " appears twice in the header (fields " +
-                                std::to_string(*slot + 1) + " and " + std::to_string(i + 1) + ")");
-        *slot = static_cast<int>(i);
-      }
-      std::string missing;
-      for (const auto& [c, name] :
-           {std::pair{col_guide, "guide"}, {col_xyz[0], "x"}, {col_xyz[1], "y"}, {col_xyz[2], "z"}})
-        if (c < 0)
-          missing += (missing.empty() ? "" : ", ") + std::string(name);
+      const std::vector<std::string> names{"guide", "x", "y", "z", "index"};
+      const std::vector<int> col = header_columns(f, names, path, lineno);
+      col_guide = col[0];
+      col_xyz[0] = col[1];
+      col_xyz[1] = col[2];
+      col_xyz[2] = col[3];
+      col_index = col[4];
+      const std::string missing = missing_columns(col, names, 4);
       if (!missing.empty())
         throw_input_error(path, lineno,
                           "header lacks the required column(s) " + missing +
@@ -111,30 +124,8 @@ GuideSet parse_guides(std::istream& in, const std::string& path) {
                       "lines)");
   if (order.empty())
     throw_input_error(path, 0, "no data rows after the header");
-  for (const std::string& id : order) {
-    std::vector<Row>& rs = rows[id];
-    std::stable_sort(rs.begin(), rs.end(),
-                     [](const Row& a, const Row& b) { return a.index < b.index; });
-    Guide g;
-    g.id = id;
-    g.points.resize(static_cast<Eigen::Index>(rs.size()), 3);
-    for (size_t i = 0; i < rs.size(); ++i) {
-      if (i > 0 && rs[i].index == rs[i - 1].index)
-        throw_input_error(path, std::max(rs[i].line, rs[i - 1].line),
-                          "duplicate index " + std::to_string(rs[i].index) + " in guide " + id +
-                              " (also on line " +
-                              std::to_string(std::min(rs[i].line, rs[i - 1].line)) + ")");
-      if (i > 0 && rs[i].p == rs[i - 1].p)
-        throw_input_error(path, rs[i].line,
-                          "point repeats the previous point of guide " + id + " (line " +
-                              std::to_string(rs[i - 1].line) + ")");
-      g.points.row(static_cast<Eigen::Index>(i)) = rs[i].p.transpose();
-      g.lines.push_back(rs[i].line);
-    }
-    if (rs.size() < 2)
-      throw_input_error(path, rs[0].line, "guide " + id + " has 1 point; need at least 2");
-    set.guides.push_back(std::move(g));
-  }
+  for (const std::string& id : order)
+    set.guides.push_back(guide_of_rows(id, rows[id], path));
   return set;
 }
 

@@ -13,30 +13,8 @@ namespace interlin {
 namespace {
 
 // Header names of the three normal columns (either spelling, not mixed).
-constexpr std::array<std::array<const char*, 3>, 2> kNormalNames{
+const std::array<std::vector<std::string>, 2> kNormalNames{
     {{"nx", "ny", "nz"}, {"normal_x", "normal_y", "normal_z"}}};
-
-// Column index of each wanted name in the header fields (-1 when absent); throws for a name that
-// appears twice.
-template <size_t N>
-std::array<int, N> find_columns(const std::vector<std::string_view>& f,
-                                const std::array<const char*, N>& names, const std::string& path,
-                                long line) {
-  std::array<int, N> col;
-  col.fill(-1);
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    const std::string name = ascii_lower(f[i]);
-    for (size_t c = 0; c < N; ++c)
-      if (name == names[c]) {
-        if (col[c] >= 0)
-          throw_input_error(path, line,
-                            "column " + name + " appears twice in the header (fields " +
-                                std::to_string(col[c] + 1) + " and " + std::to_string(i + 1) + ")");
-        col[c] = static_cast<int>(i);
-      }
-  }
-  return col;
-}
 
 // The normal columns of the header: all three of one spelling (its index into kNormalNames in
 // `spelling`), or none (-1).
@@ -44,10 +22,10 @@ std::array<int, 3> normal_columns(const std::vector<std::string_view>& f, const 
                                   long line, size_t& spelling) {
   for (spelling = 0; spelling < kNormalNames.size(); ++spelling) {
     const auto& names = kNormalNames[spelling];
-    const std::array<int, 3> col = find_columns(f, names, path, line);
+    const std::vector<int> col = header_columns(f, names, path, line);
     const int found = (col[0] >= 0) + (col[1] >= 0) + (col[2] >= 0);
     if (found == 3)
-      return col;
+      return {col[0], col[1], col[2]};
     if (found > 0)
       throw_input_error(path, line,
                         std::string("header names only some of the normal columns ") + names[0] +
@@ -82,11 +60,10 @@ PointsAndNormals parse_csv(std::string_view text, const std::string& path, bool 
     if (header_line == 0) {
       header_line = number;
       fields = f.size();
-      col = find_columns(f, std::array<const char*, 3>{"x", "y", "z"}, path, number);
-      std::string missing;
-      for (int c = 0; c < 3; ++c)
-        if (col[c] < 0)
-          missing += std::string(missing.empty() ? "" : ", ") + static_cast<char>('x' + c);
+      const std::vector<std::string> xyz{"x", "y", "z"};
+      const std::vector<int> found = header_columns(f, xyz, path, number);
+      col = {found[0], found[1], found[2]};
+      const std::string missing = missing_columns(found, xyz, 3);
       if (!missing.empty())
         throw_input_error(path, number,
                           "header lacks the column(s) " + missing +
@@ -109,7 +86,7 @@ PointsAndNormals parse_csv(std::string_view text, const std::string& path, bool 
     if (ncol[0] >= 0) {
       for (int c = 0; c < 3; ++c)
         n[c] = field_number(f[static_cast<std::size_t>(ncol[c])], path, number,
-                            kNormalNames[spelling][c]);
+                            kNormalNames[spelling][c].c_str());
       normals.push_back(n);
     }
   }

@@ -97,7 +97,7 @@ private:
     if (std::find(names.begin(), names.end(), "section") != names.end()) {
       csv_ = true;
       header_ = true;
-      csv_header(names, line);
+      csv_header(line);
       return;
     }
     split_plain(first, fields_);
@@ -121,24 +121,15 @@ private:
                "names exactly x, y, z");
   }
 
-  void csv_header(const std::vector<std::string>& names, long line) {
-    ncol_ = names.size();
-    const char* wanted[] = {"section", "x", "y", "z", "index"};
+  // The columns of a section CSV header (fields_ holds its comma-separated fields).
+  void csv_header(long line) {
+    ncol_ = fields_.size();
+    const std::vector<std::string> names{"section", "x", "y", "z", "index"};
+    const std::vector<int> col = header_columns(fields_, names, path_, line);
     size_t* where[] = {&sec_col_, &col_[0], &col_[1], &col_[2], &index_col_};
-    std::string missing;
-    for (int k = 0; k < 5; ++k) {
-      *where[k] = npos;
-      for (size_t c = 0; c < names.size(); ++c) {
-        if (names[c] != wanted[k])
-          continue;
-        if (*where[k] != npos)
-          fail(line, std::string("column ") + wanted[k] + " appears twice in the header (fields " +
-                         std::to_string(*where[k] + 1) + " and " + std::to_string(c + 1) + ")");
-        *where[k] = c;
-      }
-      if (k < 4 && *where[k] == npos)
-        missing += std::string(missing.empty() ? "" : ", ") + wanted[k];
-    }
+    for (size_t k = 0; k < names.size(); ++k)
+      *where[k] = col[k] < 0 ? npos : static_cast<size_t>(col[k]);
+    const std::string missing = missing_columns(col, names, 4);
     if (!missing.empty())
       fail(line, "header lacks the required column(s) " + missing +
                      ": a section file's header names the columns section, x, y, z (index "

@@ -59,4 +59,16 @@ double field_number(std::string_view field, const std::string& path, long line, 
 // parse_strict_long, or an InputError "PATH:LINE: column index: 'FIELD' is not an integer".
 long field_index(std::string_view field, const std::string& path, long line);
 
+// The column of each of `names` (lower case) among the header `fields` (compared in ASCII lower
+// case), -1 when absent; or an InputError "PATH:LINE: column NAME appears twice in the header
+// (fields I and J)".
+std::vector<int> header_columns(const std::vector<std::string_view>& fields,
+                                const std::vector<std::string>& names, const std::string& path,
+                                long line);
+
+// "x, z": the first `required` of `names` whose column header_columns did not find ("" when
+// every one was found).
+std::string missing_columns(const std::vector<int>& columns, const std::vector<std::string>& names,
+                            std::size_t required);
+
 } // namespace interlin
