@@ -48,6 +48,41 @@ bool is_digit(char c) {
   return c >= '0' && c <= '9';
 }
 
+// The number starting at s[i] (digits, an optional fraction unless the '.' begins MATLAB's
+// '.*', './', '.^', an optional exponent); i moves past it. A number followed by a letter, an
+// exponent without digits or a value out of a double's range is an error at `at`.
+Token lex_number(const std::string& s, std::size_t& i, Pos at, const std::string& file) {
+  const std::size_t b = i;
+  while (i < s.size() && is_digit(s[i]))
+    ++i;
+  if (i < s.size() && s[i] == '.' &&
+      !(i + 1 < s.size() && (s[i + 1] == '*' || s[i + 1] == '/' || s[i + 1] == '^')))
+    for (++i; i < s.size() && is_digit(s[i]);)
+      ++i;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    std::size_t j = i + 1;
+    if (j < s.size() && (s[j] == '+' || s[j] == '-'))
+      ++j;
+    if (j >= s.size() || !is_digit(s[j]))
+      throw_at(file, at,
+               "malformed number '" + s.substr(b, j - b) + "': the exponent needs digits");
+    for (i = j; i < s.size() && is_digit(s[i]);)
+      ++i;
+  }
+  if (i < s.size() && is_ident_start(s[i]))
+    throw_at(file, at,
+             "malformed number '" + s.substr(b, i - b + 1) + "' (a number followed by a letter)");
+  Token t;
+  t.pos = at;
+  t.kind = Token::Kind::number;
+  t.text = s.substr(b, i - b);
+  const std::string digits = t.text[0] == '.' ? "0" + t.text : t.text; // from_chars needs a digit
+  const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), t.number);
+  if (r.ec == std::errc::result_out_of_range || !std::isfinite(t.number))
+    throw_at(file, at, "number " + t.text + " is out of the range of a double");
+  return t;
+}
+
 std::vector<Token> lex(const std::string& s, const std::string& file) {
   std::vector<Token> out;
   std::size_t i = 0;
@@ -77,35 +112,7 @@ std::vector<Token> lex(const std::string& s, const std::string& file) {
     Token t;
     t.pos = pos(i);
     if (is_digit(c) || (c == '.' && i + 1 < s.size() && is_digit(s[i + 1]))) {
-      const std::size_t b = i;
-      while (i < s.size() && is_digit(s[i]))
-        ++i;
-      if (i < s.size() && s[i] == '.' &&
-          !(i + 1 < s.size() && (s[i + 1] == '*' || s[i + 1] == '/' || s[i + 1] == '^')))
-        for (++i; i < s.size() && is_digit(s[i]);)
-          ++i;
-      if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
-        std::size_t j = i + 1;
-        if (j < s.size() && (s[j] == '+' || s[j] == '-'))
-          ++j;
-        if (j >= s.size() || !is_digit(s[j]))
-          throw_at(file, t.pos,
-                   "malformed number '" + s.substr(b, j - b) + "': the exponent needs digits");
-        for (i = j; i < s.size() && is_digit(s[i]);)
-          ++i;
-      }
-      if (i < s.size() && is_ident_start(s[i]))
-        throw_at(file, t.pos,
-                 "malformed number '" + s.substr(b, i - b + 1) +
-                     "' (a number followed by a letter)");
-      t.kind = Token::Kind::number;
-      t.text = s.substr(b, i - b);
-      const std::string digits =
-          t.text[0] == '.' ? "0" + t.text : t.text; // from_chars needs a digit
-      const auto r = std::from_chars(digits.data(), digits.data() + digits.size(), t.number);
-      if (r.ec == std::errc::result_out_of_range || !std::isfinite(t.number))
-        throw_at(file, t.pos, "number " + t.text + " is out of the range of a double");
-      out.push_back(t);
+      out.push_back(lex_number(s, i, t.pos, file));
       continue;
     }
     if (is_ident_start(c)) {
