@@ -5,6 +5,7 @@
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/volume_smoothing.h"
 
+#include "node_colouring.h"
 #include "parallel.h"
 
 #include <algorithm>
@@ -25,6 +26,11 @@ constexpr int kHoldHalvings = 10;
 // h = 0.06, 509 elements outside 10 .. 170 degrees; 0.2: min 0.2, none outside, the volume within
 // 0.4 % (docs/benchmarks.md, dual hexahedra).
 constexpr double kMinScaledJacobian = 0.2;
+
+// restore_held: sweeps over the held points, and the fractions of the way from a cell's centre to
+// its target tried, largest first.
+constexpr int kRestoreSweeps = 3;
+constexpr double kRestoreSteps[] = {1, 0.75, 0.5, 0.25};
 
 // The 12 edges of a cube as pairs of corners (a, b, c) -> a + 2 b + 4 c.
 constexpr int kCubeEdge[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
@@ -139,19 +145,50 @@ std::vector<char> project_cut_points(const ImplicitFunction& f, const RegularGri
   return missed;
 }
 
-// The smallest scaled Jacobian over the 8 corners of hexahedron e: alpha_j (A(e, j)) over the
-// product of corner j's edge lengths (corner_table rows); 0 for a collapsed edge.
+// The smallest scaled Jacobian over the 8 corners of hexahedron e: alpha_j (the triple product of
+// corner j's edges, corner_table rows; A(e, j) when given) over the product of their lengths; 0
+// for a collapsed edge.
 double min_corner_jacobian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e,
-                           const Eigen::MatrixXi& corners, const Eigen::MatrixXd& A) {
+                           const Eigen::MatrixXi& corners, const Eigen::MatrixXd* A = nullptr) {
   double worst = 1;
   for (int j = 0; j < 8; ++j) {
-    const Eigen::RowVector3d p = V.row(C(e, j));
-    double l = 1;
+    const Eigen::Vector3d p = V.row(C(e, j)).transpose();
+    Eigen::Vector3d u[3];
     for (int k = 0; k < 3; ++k)
-      l *= (V.row(C(e, corners(j, k))) - p).norm();
-    worst = std::min(worst, l > 0 ? A(e, j) / l : 0.0);
+      u[k] = V.row(C(e, corners(j, k))).transpose() - p;
+    const double l = u[0].norm() * u[1].norm() * u[2].norm();
+    const double alpha = A != nullptr ? (*A)(e, j) : u[0].cross(u[1]).dot(u[2]);
+    worst = std::min(worst, l > 0 ? alpha / l : 0.0);
   }
   return worst;
+}
+
+// The hold moves every boundary point of a poor element, though one of them often suffices. Each
+// held point in turn (point order, kRestoreSweeps sweeps) goes back towards its target by the
+// largest fraction of kRestoreSteps that keeps every element around it at kMinScaledJacobian.
+void restore_held(const Eigen::MatrixXd& centre, const Eigen::MatrixXd& target,
+                  const Eigen::MatrixXi& C, Eigen::MatrixXd& V, std::vector<double>& s) {
+  const Eigen::MatrixXi corners = corner_table(8);
+  const detail::NodeElements ne(C, V.rows());
+  for (int sweep = 0; sweep < kRestoreSweeps; ++sweep)
+    for (size_t v = 0; v < s.size(); ++v) {
+      if (s[v] >= 1)
+        continue;
+      const Eigen::RowVector3d keep = V.row(long(v));
+      for (const double t : kRestoreSteps) {
+        if (t <= s[v])
+          break;
+        V.row(long(v)) = centre.row(long(v)) + t * (target.row(long(v)) - centre.row(long(v)));
+        bool good = true;
+        for (long k = ne.start[v]; k < ne.start[v + 1] && good; ++k)
+          good = min_corner_jacobian(V, C, ne.at[size_t(k)], corners) >= kMinScaledJacobian;
+        if (good) {
+          s[v] = t;
+          break;
+        }
+        V.row(long(v)) = keep;
+      }
+    }
 }
 
 } // namespace
@@ -168,15 +205,16 @@ DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
   cell_points(g, S, in, d.cell, centre, target, out.boundary, threads);
   const std::vector<char> missed = project_cut_points(f, g, out.boundary, target, threads);
   out.unprojected = std::count(missed.begin(), missed.end(), char(1));
-  // Hold: boundary points of poor elements go towards their cells' centres.
+  // Hold: boundary points of poor elements go towards their cells' centres; then back one at a
+  // time as far as their elements allow.
   out.V = target;
   std::vector<double> s(out.boundary.size(), 1);
   const Eigen::MatrixXi corners = corner_table(8);
   for (int round = 0;; ++round) {
-    const Eigen::MatrixXd A = corner_alphas(out.V, out.C);
+    const Eigen::MatrixXd A = corner_alphas(out.V, out.C); // per round (moves within it lag)
     bool folded = false;
     for (long e = 0; e < out.C.rows(); ++e) {
-      if (min_corner_jacobian(out.V, out.C, e, corners, A) >= kMinScaledJacobian)
+      if (min_corner_jacobian(out.V, out.C, e, corners, &A) >= kMinScaledJacobian)
         continue;
       for (int j = 0; j < 8; ++j) {
         const size_t v = size_t(out.C(e, j));
@@ -191,6 +229,7 @@ DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
     if (!folded)
       break;
   }
+  restore_held(centre, target, out.C, out.V, s);
   out.held.assign(out.boundary.size(), 0);
   for (size_t v = 0; v < s.size(); ++v) {
     out.held[v] = missed[v] || s[v] < 1;

@@ -99,8 +99,8 @@ constexpr double kCellsAcrossWall = 6;
 
 // The same for dual hexahedra: a slab thicker than a cell holds a layer of grid nodes in any
 // orientation, which the dual mesh keeps; 2 leaves a cell of room. Their coverage also counts the
-// slivers under boundary points held short of F = 0, which shrink only as h (a spherical shell:
-// 6.0, 3.2, 1.7, 0.87 % at cells 0.05, 0.03, 0.015, 0.0084; docs/benchmarks.md).
+// slivers under boundary points held short of F = 0, which shrink about as h (a spherical shell:
+// 0.65, 0.41, 0.22 % at cells 0.05, 0.03, 0.015; docs/benchmarks.md).
 constexpr double kCellsAcrossDualWall = 2;
 
 // Steps (digest §6.2): (1) grid over the box (cubic cells, o.resolution or o.cell), F sampled at
