@@ -122,6 +122,8 @@ void add_noise(PointCloud& c, double sigma, unsigned seed) {
       c.points(i, a) += G(rng);
 }
 
+bool thin_walls = false; // set_thin_walls
+
 // What an unstructured scan gives every method: points only; normals from prepare_cloud.
 // `inward`: how many of those normals point against the scan's true normals (prepare_cloud
 // keeps the points' order, so the kept points are matched as a subsequence); with `orient` they
@@ -131,6 +133,7 @@ PointCloud prepared(const std::string& name, const PointCloud& scan, Index& inwa
   PointCloud p;
   p.points = scan.points;
   CloudPrepOptions o;
+  o.thin_walls = thin_walls;
   p = prepare_cloud(name, p, o);
   inward = 0;
   for (Index i = 0, j = 0; i < p.points.rows(); ++i, ++j) {
@@ -327,8 +330,14 @@ CloudCase bunny() {
   c.name = "bun0.pcd";
   c.description = "PCL's bunny scan, 397 points with PCL normals (re-oriented)";
   const std::string path = std::string(INTERLIN_DATA_DIR) + "/clouds/bun0.pcd";
-  c.cloud = prepare_cloud(path, read_point_cloud(path));
+  CloudPrepOptions o;
+  o.thin_walls = thin_walls;
+  c.cloud = prepare_cloud(path, read_point_cloud(path), o);
   return c;
+}
+
+void set_thin_walls(bool on) {
+  thin_walls = on;
 }
 
 namespace {

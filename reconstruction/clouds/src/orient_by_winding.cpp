@@ -40,6 +40,12 @@ constexpr int kProbesPerPatch = 40;
 constexpr double kProbeSpacings = 2, kProbeSigmas = 3;
 constexpr int kAreaNeighbours = 8;   // point_areas' k
 constexpr Index kCheckProbes = 4000; // outside_winding's probes
+// Thin-wall sides (opt-in): the neighbours searched for the other side of the wall, the offsets
+// along the normal beyond which a neighbour counts as off the point's own sheet (noise sigmas),
+// and the probe offsets (point spacings) of the decided patches' winding number that must agree.
+constexpr int kSideNeighbours = 32;
+constexpr double kSideSigmas = 4;
+constexpr double kSideProbes[] = {0.25, 0.5, 1.0};
 
 int find(std::vector<int>& parent, int i) {
   while (parent[size_t(i)] != i)
@@ -164,9 +170,51 @@ double outside_winding(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
   return e / double(std::max<Index>(m, 1));
 }
 
+// Each point outside the decided patches (which[i] == R: a rim or a thin wall's edge) is turned
+// when two tests say its normal points into the wall: (1) its kSideNeighbours nearest points
+// that lie within 45 degrees of its normal line and farther than kSideSigmas noise sigmas along
+// it (the other side of a thin wall, or the body's own curvature) lie in front of it on the
+// whole (sum of their offsets along n positive); (2) the decided patches' winding number is
+// larger in front of it than behind it (sum over the kSideProbes offsets).
+void orient_thin_wall_sides(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N,
+                            const detail::NeighbourIndex& index, const Eigen::VectorXd& area,
+                            const std::vector<int>& which, int R, double sigma) {
+  std::vector<Index> decided;
+  for (Index i = 0; i < P.rows(); ++i)
+    if (which[size_t(i)] < R)
+      decided.push_back(i);
+  if (decided.empty())
+    return;
+  const detail::WindingNumber w(P(decided, Eigen::all), N(decided, Eigen::all), area(decided));
+  auto winding_says_inward = [&](Index i) {
+    const Eigen::Vector3d p = P.row(i).transpose(), n = N.row(i).transpose();
+    double contrast = 0; // behind minus in front
+    for (double f : kSideProbes)
+      contrast += w(p - f * std::sqrt(area(i)) * n) - w(p + f * std::sqrt(area(i)) * n);
+    return contrast < 0;
+  };
+  std::vector<int> idx;
+  std::vector<double> d2;
+  for (Index i = 0; i < P.rows(); ++i) {
+    if (which[size_t(i)] < R)
+      continue;
+    index.knn(P.row(i).transpose(), kSideNeighbours + 1, idx, d2);
+    double ahead = 0; // sum of the off-sheet neighbours' offsets along n
+    for (int j : idx) {
+      const Eigen::RowVector3d e = P.row(j) - P.row(i);
+      const double h = e.dot(N.row(i));
+      if (std::abs(h) > kSideSigmas * sigma && (e - h * N.row(i)).norm() <= std::abs(h))
+        ahead += h;
+    }
+    if (ahead > 0 && winding_says_inward(i))
+      N.row(i) *= -1;
+  }
+}
+
 } // namespace
 
-Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k) {
+Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
+                               bool thin_walls) {
   const Index n = P.rows();
   if (n < 2 * kAreaNeighbours)
     return 0;
@@ -234,10 +282,10 @@ Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, i
   const double volume = ((P.rowwise() - c).array() * N.array()).rowwise().sum().matrix().dot(area);
   if (volume < 0)
     N *= -1;
-  if (outside_winding(P, N, area, sigma) >= outside_winding(P, N0, area, sigma)) {
+  if (outside_winding(P, N, area, sigma) >= outside_winding(P, N0, area, sigma))
     N = N0; // no better than the propagated orientation by the whole cloud's measure
-    return 0;
-  }
+  if (thin_walls)
+    orient_thin_wall_sides(P, N, index, area, which, R, sigma);
   return ((N.array() * N0.array()).rowwise().sum() < 0).count();
 }
 

@@ -76,7 +76,8 @@ void cloud_normals(const std::string& path, PointCloud& c, const CloudPrepOption
     orient_normals(c.points, c.normals, o.orient_neighbours, &info);
     r.components = info.components;
     say(o, "orientation check by the winding number");
-    r.patches_flipped = orient_by_winding_number(c.points, c.normals, o.orient_neighbours);
+    r.patches_flipped =
+        orient_by_winding_number(c.points, c.normals, o.orient_neighbours, o.thin_walls);
   }
 }
 

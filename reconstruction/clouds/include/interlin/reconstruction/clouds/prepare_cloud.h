@@ -24,6 +24,7 @@ struct CloudPrepOptions {
   NormalSource normals = NormalSource::automatic;
   int normal_neighbours = 16; // PCL normal estimation: k nearest neighbours
   int orient_neighbours = 10; // orientation graph: k nearest neighbours
+  bool thin_walls = false;    // orient_by_winding_number's thin-wall sides (opt-in)
   int threads = 0;
   std::function<void(const std::string&)> progress; // one line per step
 };
@@ -31,8 +32,8 @@ struct CloudPrepOptions {
 struct CloudPrepReport {
   Eigen::Index read = 0, distinct = 0, outliers = 0, kept = 0;
   bool normals_estimated = false, normals_reoriented = false;
-  double disagreement = 0;     // orientation_disagreement of the file's normals (automatic)
-  Eigen::Index components = 0; // parts of the orientation graph
+  double disagreement = 0;          // orientation_disagreement of the file's normals (automatic)
+  Eigen::Index components = 0;      // parts of the orientation graph
   Eigen::Index patches_flipped = 0; // normals negated by orient_by_winding_number
 };
 
