@@ -8,6 +8,7 @@
 //
 // Usage: blade_family [--cases N | --only I,J,...] [--family F] [--all-degrees] [--csv FILE]
 //                     [--check] [--section-exponent E] [--section-curves]
+//                     [--pairs L1,L2,... --pairs-csv FILE]
 //   prints a Markdown table per case and a summary; --cases N runs the first N cases, --only the
 //   listed ones; --family F runs the fresh family F >= 1 (analytic_blades.h: its own draws and
 //   section counts) instead of the reference family 0; --all-degrees adds the fixed options of
@@ -17,7 +18,11 @@
 //   --section-exponent E lofts with section parameters chord^E (LoftOptions::section_exponent,
 //   default 1; 0.5 is `interlin loft --param centripetal`). --section-curves instead measures the
 //   section curves alone at the input stations (no span model): interlin's, variants of its
-//   closed interpolation, and OCCT's GeomAPI_Interpolate ("Where OCCT is closer").
+//   closed interpolation, and OCCT's GeomAPI_Interpolate ("Where OCCT is closer"). --pairs
+//   writes the pair study to FILE: for every case, every surface X (each fixed option and OCCT)
+//   and every fraction L, a second truth with the same input points, the true points between
+//   sections moved the fraction L of the way to their feet on X, and the error of every surface
+//   against it ("No input-only rule meets both targets").
 
 #include "occt_loft.h"
 
@@ -39,6 +44,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -54,9 +60,53 @@ Error error_of(const Eigen::VectorXd& d) {
   return {d.maxCoeff(), std::sqrt(d.squaredNorm() / double(d.size()))};
 }
 
-Error between_error(const test::BladeCase& c, const LoftResult& loft) {
-  const PiecewiseSurface S = to_piecewise(loft.surface);
-  return error_of(test::between_distances(c, parametric(S)));
+// Every surface of a case with its feet of the true points between sections (the pair study
+// measures against them again).
+struct Surfaces {
+  std::deque<PiecewiseSurface> pieces; // owned by `surface`
+  std::vector<ParametricSurface> surface;
+  std::vector<SurfaceProjection> feet;
+
+  Error add(const test::BladeCase& c, const ParametricSurface& S) {
+    surface.push_back(S);
+    feet.push_back(test::between_projection(c, S));
+    return error_of(feet.back().distance);
+  }
+  Error add(const test::BladeCase& c, const LoftResult& loft) {
+    pieces.push_back(to_piecewise(loft.surface));
+    return add(c, parametric(pieces.back()));
+  }
+};
+
+// The pair study of one case (--pairs): surfaces 1 .. #-1 (0 is the default, one of the fixed
+// options) are the targets X. For each X and fraction L the second truth moves each true point
+// B_i between sections to Q_i = B_i + L (F_i - B_i), F_i its foot on X: it is smooth, has the
+// same input points (X interpolates them), and B_i and Q_i lie on X's normal, s_i = L |F_i - B_i|
+// apart. Every surface Z is measured against Q by Newton from its feet of B (Q is within s_i of
+// B). One CSV row per (X, L, Z): Z's max and rms distance to Q, and the shift on the middle halves
+// of the blade's sides (sin^2 t_i >= 1/2, t_i the profile angle; there the blade is a graph over
+// X's normal on the scale of the errors, at the edges it is not): its max, and the root of its
+// sum of squares over all #B points (the rms of s with the edges' shifts set to 0).
+void pair_study(FILE* out, int index, const test::BladeCase& c,
+                const std::vector<std::string>& names, const Surfaces& s,
+                const std::vector<double>& fractions) {
+  Eigen::VectorXd side(c.between.rows());
+  for (Eigen::Index i = 0; i < side.size(); ++i)
+    side(i) = std::pow(std::sin(c.between_t(i % c.samples)), 2) >= 0.5 ? 1.0 : 0.0;
+  for (size_t x = 1; x < s.surface.size(); ++x) {
+    const SurfaceProjection& fx = s.feet[x];
+    for (double L : fractions) {
+      const Eigen::MatrixXd Q = c.between + L * (fx.foot - c.between);
+      const Error moved = error_of(L * side.cwiseProduct(fx.distance));
+      for (size_t z = 0; z < s.surface.size(); ++z) {
+        const Error e = error_of(project_from(s.surface[z], Q, s.feet[z].u, s.feet[z].v).distance);
+        std::fprintf(out, "%d,%d,%s,%.3g,%s,%.6g,%.6g,%.6g,%.6g\n", index,
+                     static_cast<int>(c.sections.size()), names[x].c_str(), L, names[z].c_str(),
+                     e.max, e.rms, moved.max, moved.rms);
+      }
+    }
+  }
+  std::fflush(out);
 }
 
 struct Row {
@@ -202,11 +252,15 @@ void quiet_occt() {
 }
 
 int run(const std::vector<int>& cases, int family, bool all_degrees, const char* csv_path,
-        bool check, double section_exponent) {
+        bool check, double section_exponent, const std::vector<double>& fractions,
+        const char* pairs_path) {
   double excess = 0;
   FILE* csv = csv_path ? std::fopen(csv_path, "w") : nullptr;
   if (csv)
     std::fprintf(csv, "case,K,stacking,model,loo_max,loo_rms,between_max,between_rms\n");
+  FILE* pairs = pairs_path && !fractions.empty() ? std::fopen(pairs_path, "w") : nullptr;
+  if (pairs)
+    std::fprintf(pairs, "case,K,target,fraction,model,max,rms,shift_max,shift_rms\n");
   double worst_occt_max = 0, worst_occt_rms = 0, worst_fixed_max = 0, worst_fixed_rms = 0;
   std::printf("| case | default model | LOO max | between max / rms | / OCCT (max, rms) | / best "
               "fixed (max, rms) | best fixed |\n|---|---|---|---|---|---|---|\n");
@@ -216,14 +270,12 @@ int run(const std::vector<int>& cases, int family, bool all_degrees, const char*
     LoftOptions base;
     base.section_exponent = section_exponent;
     const LoftResult def = loft_sections(c.sections, base);
+    Surfaces surfaces;
     std::vector<Row> rows;
-    rows.push_back({"default", def.span.used, between_error(c, def)});
-    if (check) {
-      const PiecewiseSurface ps = to_piecewise(def.surface);
-      const double e =
-          projection_excess(test::between_distances(c, parametric(ps)), parametric(ps), c.between);
-      excess = std::max(excess, e);
-    }
+    rows.push_back({"default", def.span.used, surfaces.add(c, def)});
+    if (check)
+      excess = std::max(
+          excess, projection_excess(surfaces.feet[0].distance, surfaces.surface[0], c.between));
     for (SpanParameters p : {SpanParameters::station, SpanParameters::chord,
                              SpanParameters::centripetal, SpanParameters::uniform})
       for (int q = 2; q < K; ++q) {
@@ -234,18 +286,24 @@ int run(const std::vector<int>& cases, int family, bool all_degrees, const char*
         o.span = p;
         o.span_degree = q;
         const LoftResult r = loft_sections(c.sections, o);
-        rows.push_back({label(p, q), r.span.used, between_error(c, r)});
+        rows.push_back({label(p, q), r.span.used, surfaces.add(c, r)});
       }
     std::vector<TopoDS_Wire> wires;
     for (const Section& s : c.sections)
       wires.push_back(bench::occt_section_wire(s.points));
-    const ParametricSurface occt_surface =
-        bench::occt_parametric(bench::occt_first_surface(bench::occt_thru_sections(wires)));
-    const Eigen::VectorXd occt_distance = test::between_distances(c, occt_surface);
-    const Error occt = error_of(occt_distance);
+    const Error occt = surfaces.add(
+        c, bench::occt_parametric(bench::occt_first_surface(bench::occt_thru_sections(wires))));
     if (check) {
-      const double e = projection_excess(occt_distance, occt_surface, c.between);
+      const double e =
+          projection_excess(surfaces.feet.back().distance, surfaces.surface.back(), c.between);
       excess = std::max(excess, e);
+    }
+    if (pairs) {
+      std::vector<std::string> names;
+      for (const Row& r : rows)
+        names.push_back(r.model);
+      names.push_back("occt");
+      pair_study(pairs, i, c, names, surfaces, fractions);
     }
     if (csv) {
       for (const Row& r : rows)
@@ -284,6 +342,8 @@ int run(const std::vector<int>& cases, int family, bool all_degrees, const char*
                 excess);
   if (csv)
     std::fclose(csv);
+  if (pairs)
+    std::fclose(pairs);
   return 0;
 }
 
@@ -296,6 +356,8 @@ int main(int argc, char** argv) {
     cases.push_back(i);
   double section_exponent = LoftOptions{}.section_exponent;
   const char* csv = nullptr;
+  const char* pairs_csv = nullptr;
+  std::vector<double> fractions;
   bool check = false, all_degrees = false, section_curves = false;
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--check"))
@@ -318,11 +380,19 @@ int main(int argc, char** argv) {
       section_exponent = std::atof(argv[++a]);
     else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc)
       csv = argv[++a];
+    else if (!std::strcmp(argv[a], "--pairs-csv") && a + 1 < argc)
+      pairs_csv = argv[++a];
+    else if (!std::strcmp(argv[a], "--pairs") && a + 1 < argc)
+      for (char* p = argv[++a]; *p;) {
+        fractions.push_back(std::strtod(p, &p));
+        p += *p == ',';
+      }
   }
   try {
     quiet_occt();
     return section_curves ? run_section_curves(cases, family)
-                          : run(cases, family, all_degrees, csv, check, section_exponent);
+                          : run(cases, family, all_degrees, csv, check, section_exponent, fractions,
+                                pairs_csv);
   } catch (const Standard_Failure& e) {
     std::fprintf(stderr, "blade_family: OpenCASCADE: %s\n", e.GetMessageString());
   } catch (const std::exception& e) {

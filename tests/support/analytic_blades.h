@@ -230,7 +230,8 @@ inline BladeCase blade_case(int index, int samples = 120, int family = 0) {
 // means of the feet of the true points at the same angle on the two neighbouring sections: those
 // lie on S up to the section curves' own error, so their feet are unambiguous, and starting there
 // keeps the right side of a thin edge where S is farther from the truth than the blade is thick.
-inline Eigen::VectorXd between_distances(const BladeCase& c, const ParametricSurface& S) {
+// between_projection gives the feet (parameters, points, distances) of c.between.
+inline SurfaceProjection between_projection(const BladeCase& c, const ParametricSurface& S) {
   const Eigen::Index m = c.samples, K = static_cast<Eigen::Index>(c.stations.size());
   const Eigen::Index nb = c.between.rows();
   // One grid search for the true points on the sections and between them.
@@ -250,7 +251,19 @@ inline Eigen::VectorXd between_distances(const BladeCase& c, const ParametricSur
       u0(k * m + i) = 0.5 * (f.u(a) + ub);
       v0(k * m + i) = 0.5 * (f.v(a) + f.v(b));
     }
-  return f.distance.head(nb).cwiseMin(project_from(S, c.between, u0, v0).distance);
+  SurfaceProjection g = project_from(S, c.between, u0, v0);
+  for (Eigen::Index i = 0; i < nb; ++i)
+    if (f.distance(i) < g.distance(i)) {
+      g.u(i) = f.u(i);
+      g.v(i) = f.v(i);
+      g.distance(i) = f.distance(i);
+      g.foot.row(i) = f.foot.row(i);
+    }
+  return g;
+}
+
+inline Eigen::VectorXd between_distances(const BladeCase& c, const ParametricSurface& S) {
+  return between_projection(c, S).distance;
 }
 
 // True profile points of section k of a case densely between its input points: per_gap - 1
