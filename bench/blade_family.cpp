@@ -63,7 +63,7 @@ Error error_of(const Eigen::VectorXd& d) {
 // Every surface of a case with its feet of the true points between sections (the pair study
 // measures against them again).
 struct Surfaces {
-  std::deque<PiecewiseSurface> pieces; // owned by `surface`
+  std::deque<PiecewiseSurface> pieces; // referenced by `surface` (a deque: stable addresses)
   std::vector<ParametricSurface> surface;
   std::vector<SurfaceProjection> feet;
 
