@@ -45,6 +45,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -107,6 +108,13 @@ void pair_study(FILE* out, int index, const test::BladeCase& c,
     }
   }
   std::fflush(out);
+}
+
+FILE* open_for_writing(const char* path) {
+  FILE* f = std::fopen(path, "w");
+  if (!f)
+    throw std::runtime_error(std::string(path) + ": cannot be written");
+  return f;
 }
 
 struct Row {
@@ -255,10 +263,10 @@ int run(const std::vector<int>& cases, int family, bool all_degrees, const char*
         bool check, double section_exponent, const std::vector<double>& fractions,
         const char* pairs_path) {
   double excess = 0;
-  FILE* csv = csv_path ? std::fopen(csv_path, "w") : nullptr;
+  FILE* csv = csv_path ? open_for_writing(csv_path) : nullptr;
   if (csv)
     std::fprintf(csv, "case,K,stacking,model,loo_max,loo_rms,between_max,between_rms\n");
-  FILE* pairs = pairs_path && !fractions.empty() ? std::fopen(pairs_path, "w") : nullptr;
+  FILE* pairs = pairs_path && !fractions.empty() ? open_for_writing(pairs_path) : nullptr;
   if (pairs)
     std::fprintf(pairs, "case,K,target,fraction,model,max,rms,shift_max,shift_rms\n");
   double worst_occt_max = 0, worst_occt_rms = 0, worst_fixed_max = 0, worst_fixed_rms = 0;
@@ -349,46 +357,59 @@ int run(const std::vector<int>& cases, int family, bool all_degrees, const char*
 
 } // namespace
 
-int main(int argc, char** argv) {
-  int family = 0;
-  std::vector<int> cases;
-  for (int i = 0; i < test::kBladeCases; ++i)
-    cases.push_back(i);
-  double section_exponent = LoftOptions{}.section_exponent;
-  const char* csv = nullptr;
-  const char* pairs_csv = nullptr;
-  std::vector<double> fractions;
-  bool check = false, all_degrees = false, section_curves = false;
-  for (int a = 1; a < argc; ++a) {
-    if (!std::strcmp(argv[a], "--check"))
-      check = true;
-    else if (!std::strcmp(argv[a], "--section-curves"))
-      section_curves = true;
-    else if (!std::strcmp(argv[a], "--all-degrees"))
-      all_degrees = true;
-    else if (!std::strcmp(argv[a], "--family") && a + 1 < argc)
-      family = std::atoi(argv[++a]);
-    else if (!std::strcmp(argv[a], "--cases") && a + 1 < argc)
-      cases.resize(static_cast<size_t>(std::clamp(std::atoi(argv[++a]), 0, test::kBladeCases)));
-    else if (!std::strcmp(argv[a], "--only") && a + 1 < argc) {
-      cases.clear();
-      for (char* p = argv[++a]; *p;) {
-        cases.push_back(static_cast<int>(std::strtol(p, &p, 10)));
-        p += *p == ',';
-      }
-    } else if (!std::strcmp(argv[a], "--section-exponent") && a + 1 < argc)
-      section_exponent = std::atof(argv[++a]);
-    else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc)
-      csv = argv[++a];
-    else if (!std::strcmp(argv[a], "--pairs-csv") && a + 1 < argc)
-      pairs_csv = argv[++a];
-    else if (!std::strcmp(argv[a], "--pairs") && a + 1 < argc)
-      for (char* p = argv[++a]; *p;) {
-        fractions.push_back(std::strtod(p, &p));
-        p += *p == ',';
-      }
+// The comma-separated numbers of an option's value ("0.5,0.75,1"); anything else is an error
+// (strtod stops where it fails, so a loop that only skips commas would never end on "x").
+std::vector<double> number_list(const char* option, const char* text) {
+  std::vector<double> out;
+  for (const char* p = text; *p;) {
+    char* end = nullptr;
+    const double v = std::strtod(p, &end);
+    if (end == p || (*end != '\0' && *end != ','))
+      throw std::invalid_argument(std::string(option) + " '" + text +
+                                  "': expected comma-separated numbers");
+    out.push_back(v);
+    p = end + (*end == ',');
   }
+  return out;
+}
+
+int main(int argc, char** argv) {
   try {
+    int family = 0;
+    std::vector<int> cases;
+    for (int i = 0; i < test::kBladeCases; ++i)
+      cases.push_back(i);
+    double section_exponent = LoftOptions{}.section_exponent;
+    const char* csv = nullptr;
+    const char* pairs_csv = nullptr;
+    std::vector<double> fractions;
+    bool check = false, all_degrees = false, section_curves = false;
+    for (int a = 1; a < argc; ++a) {
+      if (!std::strcmp(argv[a], "--check"))
+        check = true;
+      else if (!std::strcmp(argv[a], "--section-curves"))
+        section_curves = true;
+      else if (!std::strcmp(argv[a], "--all-degrees"))
+        all_degrees = true;
+      else if (!std::strcmp(argv[a], "--family") && a + 1 < argc)
+        family = std::atoi(argv[++a]);
+      else if (!std::strcmp(argv[a], "--cases") && a + 1 < argc)
+        cases.resize(static_cast<size_t>(std::clamp(std::atoi(argv[++a]), 0, test::kBladeCases)));
+      else if (!std::strcmp(argv[a], "--only") && a + 1 < argc) {
+        cases.clear();
+        for (double v : number_list("--only", argv[++a]))
+          cases.push_back(static_cast<int>(v));
+      } else if (!std::strcmp(argv[a], "--section-exponent") && a + 1 < argc)
+        section_exponent = std::atof(argv[++a]);
+      else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc)
+        csv = argv[++a];
+      else if (!std::strcmp(argv[a], "--pairs-csv") && a + 1 < argc)
+        pairs_csv = argv[++a];
+      else if (!std::strcmp(argv[a], "--pairs") && a + 1 < argc)
+        fractions = number_list("--pairs", argv[++a]);
+    }
+    if (!fractions.empty() && !pairs_csv)
+      throw std::invalid_argument("--pairs needs --pairs-csv FILE");
     quiet_occt();
     return section_curves ? run_section_curves(cases, family)
                           : run(cases, family, all_degrees, csv, check, section_exponent, fractions,
