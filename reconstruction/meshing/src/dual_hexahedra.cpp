@@ -5,6 +5,7 @@
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/volume_smoothing.h"
 
+#include "corner_jacobian.h"
 #include "node_colouring.h"
 #include "parallel.h"
 
@@ -145,30 +146,25 @@ std::vector<char> project_cut_points(const ImplicitFunction& f, const RegularGri
   return missed;
 }
 
-// The smallest scaled Jacobian over the 8 corners of hexahedron e: alpha_j (the triple product of
-// corner j's edges, corner_table rows; A(e, j) when given) over the product of their lengths; 0
-// for a collapsed edge.
+// The smallest corner scaled Jacobian of hexahedron e (corner_scaled_jacobian); its alpha_j from
+// row e of A when given.
 double min_corner_jacobian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e,
                            const Eigen::MatrixXi& corners, const Eigen::MatrixXd* A = nullptr) {
-  double worst = 1;
+  Eigen::Vector3d p[8];
+  double alpha[8];
   for (int j = 0; j < 8; ++j) {
-    const Eigen::Vector3d p = V.row(C(e, j)).transpose();
-    Eigen::Vector3d u[3];
-    for (int k = 0; k < 3; ++k)
-      u[k] = V.row(C(e, corners(j, k))).transpose() - p;
-    const double l = u[0].norm() * u[1].norm() * u[2].norm();
-    const double alpha = A != nullptr ? (*A)(e, j) : u[0].cross(u[1]).dot(u[2]);
-    worst = std::min(worst, l > 0 ? alpha / l : 0.0);
+    p[j] = V.row(C(e, j)).transpose();
+    alpha[j] = A != nullptr ? (*A)(e, j) : 0;
   }
-  return worst;
+  return detail::corner_scaled_jacobian(p, corners, A != nullptr ? alpha : nullptr).min_scaled;
 }
 
 // The hold moves every boundary point of a poor element, though one of them often suffices. Each
 // held point in turn (point order, kRestoreSweeps sweeps) goes back towards its target by the
 // largest fraction of kRestoreSteps that keeps every element around it at kMinScaledJacobian.
 void restore_held(const Eigen::MatrixXd& centre, const Eigen::MatrixXd& target,
-                  const Eigen::MatrixXi& C, Eigen::MatrixXd& V, std::vector<double>& s) {
-  const Eigen::MatrixXi corners = corner_table(8);
+                  const Eigen::MatrixXi& C, const Eigen::MatrixXi& corners, Eigen::MatrixXd& V,
+                  std::vector<double>& s) {
   const detail::NodeElements ne(C, V.rows());
   for (int sweep = 0; sweep < kRestoreSweeps; ++sweep)
     for (size_t v = 0; v < s.size(); ++v) {
@@ -229,7 +225,7 @@ DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
     if (!folded)
       break;
   }
-  restore_held(centre, target, out.C, out.V, s);
+  restore_held(centre, target, out.C, corners, out.V, s);
   out.held.assign(out.boundary.size(), 0);
   for (size_t v = 0; v < s.size(); ++v) {
     out.held[v] = missed[v] || s[v] < 1;

@@ -3,6 +3,7 @@
 
 #include "interlin/reconstruction/meshing/volume_smoothing.h"
 
+#include "corner_jacobian.h"
 #include "parallel.h"
 
 #include <Eigen/Geometry>
@@ -107,14 +108,9 @@ void hexahedron(const Eigen::MatrixXd& P, ElementQuality& q) {
   for (int i = 0; i < 8; ++i)
     p[i] = pt(P, i);
   static const Eigen::MatrixXi T = corner_table(8);
-  q.scaled_jacobian = std::numeric_limits<double>::infinity();
-  q.inverted = false;
-  for (int j = 0; j < 8; ++j) {
-    const Vec3 u = p[T(j, 0)] - p[j], v = p[T(j, 1)] - p[j], w = p[T(j, 2)] - p[j];
-    const double alpha = u.cross(v).dot(w), l = u.norm() * v.norm() * w.norm();
-    q.inverted = q.inverted || !(alpha > 0);
-    q.scaled_jacobian = std::min(q.scaled_jacobian, l > 0 ? alpha / l : 0.0);
-  }
+  const detail::CornerJacobian corners = detail::corner_scaled_jacobian(p, T);
+  q.scaled_jacobian = corners.min_scaled;
+  q.inverted = corners.inverted;
   // Centre: the principal axes (Verdict).
   const Vec3 x1 = (p[1] - p[0]) + (p[2] - p[3]) + (p[5] - p[4]) + (p[6] - p[7]);
   const Vec3 x2 = (p[3] - p[0]) + (p[2] - p[1]) + (p[7] - p[4]) + (p[6] - p[5]);

@@ -1,0 +1,34 @@
+#pragma once
+// The corner scaled Jacobian of a hexahedron (Knupp; Verdict's hexahedral scaled Jacobian without
+// its centre term): at corner j with edges u, v, w to the corners of corner_table(8) row j,
+// alpha_j / (|u| |v| |w|), alpha_j = (u x v) . w (digest 003 §6.4).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <limits>
+
+namespace interlin::detail {
+
+struct CornerJacobian {
+  double min_scaled = std::numeric_limits<double>::infinity(); // 0 at a collapsed edge
+  bool inverted = false; // a corner with alpha_j <= 0 (or NaN, which the minimum skips)
+};
+
+// p: the 8 corners (VTK order); T: corner_table(8); alpha: the 8 alpha_j when already known
+// (corner_alphas), else nullptr.
+inline CornerJacobian corner_scaled_jacobian(const Eigen::Vector3d p[8], const Eigen::MatrixXi& T,
+                                             const double* alpha = nullptr) {
+  CornerJacobian r;
+  for (int j = 0; j < 8; ++j) {
+    const Eigen::Vector3d u = p[T(j, 0)] - p[j], v = p[T(j, 1)] - p[j], w = p[T(j, 2)] - p[j];
+    const double a = alpha != nullptr ? alpha[j] : u.cross(v).dot(w);
+    const double l = u.norm() * v.norm() * w.norm();
+    r.inverted = r.inverted || !(a > 0);
+    r.min_scaled = std::min(r.min_scaled, l > 0 ? a / l : 0.0);
+  }
+  return r;
+}
+
+} // namespace interlin::detail
