@@ -157,9 +157,8 @@ void check_grid_limits(const ParsedArgs& a, const Eigen::AlignedBox3d& box,
                    "max-elements");
 }
 
-// The body of `interlin mesh` (run_command handles help, exit statuses and removal on failure).
-void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
-  const std::string input = single_input(a, "model file");
+// The grid and sub-box options of `interlin mesh` (usage errors for bad values).
+ImplicitMeshOptions grid_options(const ParsedArgs& a) {
   if (a.has("resolution") && a.has("cell"))
     throw UsageError("--resolution and --cell exclude each other");
   ImplicitMeshOptions o;
@@ -188,11 +187,13 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
     o.subboxes = k.size() == 1 ? Eigen::Array3i::Constant(k[0]) : Eigen::Array3i(k[0], k[1], k[2]);
   }
   o.project = !a.has("no-project");
-  const int smooth = parse_int("smooth", a.get("smooth", "0"), 0, 1000);
-  const bool flip = a.has("flip"), quiet = a.has("quiet");
-  const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
-  const MeshPrecision precision = mesh_precision(a);
-  const std::vector<std::string> outputs = a.all("output");
+  return o;
+}
+
+// Options that belong to one of surface or volume meshes, and the outputs' kinds (surface meshes;
+// empty for --volume): usage errors before any work.
+std::map<std::string, Kind> checked_outputs(const ParsedArgs& a,
+                                            const std::vector<std::string>& outputs) {
   if (outputs.empty())
     throw UsageError("nothing to do: give -o FILE");
   const bool volume = a.has("volume");
@@ -211,13 +212,11 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
     if (!volume)
       kinds[out] = output_kind(out);
   }
-  check_outputs({input}, outputs);
-  const ModelOptions mo = model_file_options(a, input, SettingLabel::name);
+  return kinds;
+}
 
-  const Progress progress{quiet};
-  progress("reading " + input);
-  const ImplicitFunction f = load_implicit(input, mo);
-  const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
+// The grid the options ask for on `box` exists and can hold the sub-boxes (usage errors).
+void check_grid(const ParsedArgs& a, const Eigen::AlignedBox3d& box, const ImplicitMeshOptions& o) {
   check_grid_limits(a, box, o);
   try {
     const RegularGrid g =
@@ -230,26 +229,13 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  if (volume) {
-    VolumeRequest r;
-    r.input = input;
-    r.box = box;
-    r.resolution = o.resolution;
-    r.cell = o.cell;
-    r.threads = o.threads;
-    r.smooth = smooth;
-    r.outputs = outputs;
-    r.quiet = quiet;
-    r.azimuth = azimuth;
-    r.elevation = elevation;
-    r.model = mo;
-    mesh_volume(a, f, r, progress, written);
-    return;
-  }
+}
+
+// Surface mesh: marching cubes, then the optional smoothing and edge flips; warnings on stderr.
+void surface_mesh(const ImplicitFunction& f, const std::string& input, ImplicitMeshOptions& o,
+                  int smooth, bool flip, bool quiet, const Progress& progress, Eigen::MatrixXd& V,
+                  Eigen::MatrixXi& F, ImplicitMeshInfo& info) {
   o.progress = progress;
-  Eigen::MatrixXd V;
-  Eigen::MatrixXi F;
-  ImplicitMeshInfo info;
   implicit_mesh(f, o, V, F, &info);
   if (!quiet && info.nonfinite > 0)
     std::cerr << "warning: " << info.nonfinite
@@ -275,8 +261,12 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
     const long n = flip_edges(V, F);
     progress(std::to_string(n) + " edges flipped");
   }
-  progress("checking the mesh");
-  const MeshReport r = check_mesh(V, F);
+}
+
+// The surface mesh's summary on stdout; an error when it is not watertight.
+void print_surface_summary(const std::string& input, const Eigen::AlignedBox3d& box,
+                           const ImplicitMeshOptions& o, const ImplicitMeshInfo& info,
+                           const MeshReport& r) {
   const RegularGrid& g = info.grid;
   std::cout << "interlin mesh " << input << "\n";
   std::cout << "  box          [" << fmt(box.min()(0)) << ", " << fmt(box.max()(0)) << "] x ["
@@ -300,6 +290,48 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
                              std::to_string(r.boundary_edges) + ", non-manifold edges " +
                              std::to_string(r.nonmanifold_edges) + ", degenerate faces " +
                              std::to_string(r.degenerate_faces) + ")");
+}
+
+// The body of `interlin mesh` (run_command handles help, exit statuses and removal on failure).
+void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
+  const std::string input = single_input(a, "model file");
+  ImplicitMeshOptions o = grid_options(a);
+  const int smooth = parse_int("smooth", a.get("smooth", "0"), 0, 1000);
+  const bool flip = a.has("flip"), quiet = a.has("quiet");
+  const auto [azimuth, elevation] = parse_int_pair("view", a.get("view", "45,25"), -360, 360);
+  const MeshPrecision precision = mesh_precision(a);
+  const std::vector<std::string> outputs = a.all("output");
+  const std::map<std::string, Kind> kinds = checked_outputs(a, outputs);
+  check_outputs({input}, outputs);
+  const ModelOptions mo = model_file_options(a, input, SettingLabel::name);
+
+  const Progress progress{quiet};
+  progress("reading " + input);
+  const ImplicitFunction f = load_implicit(input, mo);
+  const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
+  check_grid(a, box, o);
+  if (a.has("volume")) {
+    VolumeRequest r;
+    r.input = input;
+    r.box = box;
+    r.resolution = o.resolution;
+    r.cell = o.cell;
+    r.threads = o.threads;
+    r.smooth = smooth;
+    r.outputs = outputs;
+    r.quiet = quiet;
+    r.azimuth = azimuth;
+    r.elevation = elevation;
+    r.model = mo;
+    mesh_volume(a, f, r, progress, written);
+    return;
+  }
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  ImplicitMeshInfo info;
+  surface_mesh(f, input, o, smooth, flip, quiet, progress, V, F, info);
+  progress("checking the mesh");
+  print_surface_summary(input, box, o, info, check_mesh(V, F));
   for (const std::string& out : outputs) {
     progress("writing " + out);
     if (kinds.at(out) == Kind::mesh) {
