@@ -202,20 +202,22 @@ bool parse_real(std::string_view text, double& out) {
   return res.ec == std::errc() && res.ptr == t.data() + t.size() && std::isfinite(out);
 }
 
-IgesFile load(std::string_view text, const std::string& path) {
-  IgesFile f;
-  f.path = path;
+// The file's lines, CR stripped.
+std::vector<std::string> split_lines(std::string_view text) {
+  std::vector<std::string> lines;
   while (!text.empty()) {
     const std::size_t e = std::min(text.find('\n'), text.size());
     std::string_view l = text.substr(0, e);
     if (!l.empty() && l.back() == '\r')
       l.remove_suffix(1);
-    f.lines.emplace_back(l);
+    lines.emplace_back(l);
     text.remove_prefix(std::min(e + 1, text.size()));
   }
-  if (f.lines.empty())
-    throw_input_error(path, 0, "empty file");
+  return lines;
+}
 
+// Section letters in column 73 in the order S G D P T, sequence numbers 1, 2, ... in each.
+void read_sections(IgesFile& f) {
   int current = -1;
   for (std::size_t i = 0; i < f.lines.size(); ++i) {
     const std::string& l = f.lines[i];
@@ -247,17 +249,19 @@ IgesFile load(std::string_view text, const std::string& path) {
       f.fail(ln, "sequence number '" + std::string(trim(seq_text)) + "', expected " +
                      std::to_string(f.count[kk]));
   }
-  const long last = static_cast<long>(f.lines.size());
   if (current != 4)
-    f.fail(last, "file ends without a Terminate section (truncated?)");
+    f.fail(static_cast<long>(f.lines.size()), "file ends without a Terminate section (truncated?)");
+}
+
+// Every section present, whole Directory entries, and the Terminate line's counts
+// "S      nG      nD      nP      n" equal to the line counts.
+void check_counts(const IgesFile& f) {
   const char* names[] = {"Start", "Global", "Directory Entry", "Parameter Data"};
   for (int k = 1; k < 4; ++k)
     if (f.count[k] == 0)
       f.fail(f.first_line[4], std::string("no ") + names[k] + " section");
   if (f.count[2] % 2 != 0)
     f.fail(f.file_line(2, f.count[2]), "Directory Entry section has an odd number of lines");
-
-  // Terminate: "S      nG      nD      nP      n" must match the line counts.
   const std::string& t = f.lines[static_cast<std::size_t>(f.first_line[4] - 1)];
   for (int k = 0; k < 4; ++k) {
     long n = 0;
@@ -269,8 +273,10 @@ IgesFile load(std::string_view text, const std::string& path) {
                                   names[k] + " lines, the file has " + std::to_string(f.count[k]) +
                                   " (truncated?)");
   }
+}
 
-  // Global parameters 1 and 2: the delimiters ("1H," / "1H;" or empty for the defaults).
+// Global parameters 1 and 2: the delimiters ("1H," / "1H;" or empty for the defaults).
+void read_delimiters(IgesFile& f) {
   std::string g;
   for (long seq = 1; seq <= f.count[1]; ++seq)
     g += f.line(1, seq).substr(0, kDataColumns);
@@ -294,6 +300,17 @@ IgesFile load(std::string_view text, const std::string& path) {
   f.record_delim = delimiter(';', f.param_delim);
   if (f.param_delim == f.record_delim || f.param_delim == ' ' || f.record_delim == ' ')
     f.fail(gline, "Global section: invalid delimiters");
+}
+
+IgesFile load(std::string_view text, const std::string& path) {
+  IgesFile f;
+  f.path = path;
+  f.lines = split_lines(text);
+  if (f.lines.empty())
+    throw_input_error(path, 0, "empty file");
+  read_sections(f);
+  check_counts(f);
+  read_delimiters(f);
   return f;
 }
 
@@ -463,10 +480,143 @@ bool is_clamped(const Eigen::VectorXd& knots, int degree, Eigen::Index num) {
   return true;
 }
 
-} // namespace
+// The first Directory entry of type 128 (rational B-spline surface).
+DirectoryEntry find_surface_entry(const IgesFile& f) {
+  for (long seq = 1; seq < f.count[2]; seq += 2) {
+    const DirectoryEntry e = directory_entry(f, seq);
+    if (e.type == 128)
+      return e;
+  }
+  f.fail(0, "no rational B-spline surface (entity 128) in the file");
+}
 
-void write_iges(const std::string& path, const BSplineSurface& s, const IgesOptions& opt) {
-  check_surface(s);
+// Parameters 1-9 of entity 128: K1, K2, M1, M2, PROP1..5 -> degrees, counts, closed_u.
+BSplineSurface surface_header(const ParameterReader& r, const DirectoryEntry& e) {
+  const IgesFile& f = r.f;
+  const std::vector<Token>& tokens = r.tokens;
+  const long type = r.integer(0, "the entity type");
+  if (type != 128)
+    f.fail(tokens[0].line, "parameter data of Directory Entry " + std::to_string(e.seq) +
+                               " is entity " + std::to_string(type) + ", expected 128");
+  const long k1 = r.integer(1, "K1"), k2 = r.integer(2, "K2");
+  const long m1 = r.integer(3, "M1"), m2 = r.integer(4, "M2");
+  constexpr long kMaxIndex = 10'000'000;
+  if (m1 < 1 || m2 < 1 || m1 > 64 || m2 > 64)
+    f.fail(tokens[3].line, "degrees M1 = " + std::to_string(m1) + ", M2 = " + std::to_string(m2) +
+                               " (1..64 supported)");
+  if (k1 < m1 || k2 < m2 || k1 > kMaxIndex || k2 > kMaxIndex)
+    f.fail(tokens[1].line, "K1 = " + std::to_string(k1) + ", K2 = " + std::to_string(k2) +
+                               " do not fit degrees " + std::to_string(m1) + ", " +
+                               std::to_string(m2) + " (need K >= M)");
+  long prop[5];
+  for (int k = 0; k < 5; ++k) {
+    prop[k] = r.integer(static_cast<std::size_t>(5 + k), "PROP" + std::to_string(k + 1));
+    if (prop[k] != 0 && prop[k] != 1)
+      f.fail(tokens[static_cast<std::size_t>(5 + k)].line,
+             "PROP" + std::to_string(k + 1) + " must be 0 or 1, is " + std::to_string(prop[k]));
+  }
+  BSplineSurface s;
+  s.degree_u = static_cast<int>(m1);
+  s.degree_v = static_cast<int>(m2);
+  s.num_u = k1 + 1;
+  s.num_v = k2 + 1;
+  s.closed_u = prop[0] == 1;
+  return s;
+}
+
+// A nondecreasing, clamped knot vector of `count` knots from parameter k on; advances k.
+Eigen::VectorXd read_knots(const ParameterReader& r, std::size_t& k, std::int64_t count,
+                           const char* dir, int degree, Eigen::Index num) {
+  const std::size_t first = k;
+  Eigen::VectorXd knots(count);
+  for (Eigen::Index q = 0; q < count; ++q, ++k) {
+    knots(q) = r.real(k, std::string(dir) + " knot " + std::to_string(q));
+    if (q > 0 && knots(q) < knots(q - 1))
+      r.f.fail(r.tokens[k].line, std::string(dir) + " knots decrease at knot " + std::to_string(q));
+  }
+  if (!is_clamped(knots, degree, num))
+    r.f.fail(r.tokens[first].line, std::string(dir) +
+                                       " knot vector is not clamped (end knots of multiplicity "
+                                       "degree + 1 = " +
+                                       std::to_string(degree + 1) + " are required)");
+  return knots;
+}
+
+// Positive, equal weights (equal weights cancel in the rational form: the surface is polynomial).
+void check_weights(const ParameterReader& r, std::size_t& k, std::int64_t num_ctrl) {
+  const double w0 = r.real(k, "weight W(0,0)");
+  for (std::int64_t q = 0; q < num_ctrl; ++q, ++k) {
+    const double w = r.real(k, "weight " + std::to_string(q));
+    if (!(w > 0.0))
+      r.f.fail(r.tokens[k].line, "weight " + std::to_string(q) + " is not positive");
+    if (std::abs(w - w0) > 1e-12 * w0)
+      r.f.fail(r.tokens[k].line, "rational surface (unequal weights) is not supported");
+  }
+}
+
+// U(0), U(1), V(0), V(1) must be the knot domain: a restricted range is not representable.
+void check_parameter_range(const ParameterReader& r, std::size_t k, const BSplineSurface& s) {
+  const double range[4] = {r.real(k, "U(0)"), r.real(k + 1, "U(1)"), r.real(k + 2, "V(0)"),
+                           r.real(k + 3, "V(1)")};
+  const double domain[4] = {s.knots_u(s.degree_u), s.knots_u(s.num_u), s.knots_v(s.degree_v),
+                            s.knots_v(s.num_v)};
+  for (int q = 0; q < 4; ++q) {
+    const double span = q < 2 ? domain[1] - domain[0] : domain[3] - domain[2];
+    if (std::abs(range[q] - domain[q]) > 1e-9 * std::abs(span))
+      r.f.fail(r.tokens[k + static_cast<std::size_t>(q)].line,
+               "parameter range [" + iges_real(range[0]) + ", " + iges_real(range[1]) + "] x [" +
+                   iges_real(range[2]) + ", " + iges_real(range[3]) +
+                   "] differs from the knot domain; restricted surfaces are not supported");
+  }
+}
+
+// Entity 128's parameter record (IGES 5.3 §4.24) -> the polynomial B-spline surface.
+BSplineSurface surface_of_parameters(const ParameterReader& r, const DirectoryEntry& e) {
+  BSplineSurface s = surface_header(r, e);
+  const std::int64_t num_ku = s.num_u + s.degree_u + 1, num_kv = s.num_v + s.degree_v + 1;
+  const std::int64_t num_ctrl = static_cast<std::int64_t>(s.num_u) * s.num_v;
+  const std::int64_t needed = 10 + num_ku + num_kv + 4 * num_ctrl + 4;
+  if (static_cast<std::int64_t>(r.tokens.size()) < needed)
+    r.f.fail(r.last_line, "entity 128 with K1 = " + std::to_string(s.num_u - 1) + ", K2 = " +
+                              std::to_string(s.num_v - 1) + " needs " + std::to_string(needed) +
+                              " parameters, the record has " + std::to_string(r.tokens.size()));
+  std::size_t k = 10;
+  s.knots_u = read_knots(r, k, num_ku, "u", s.degree_u, s.num_u);
+  s.knots_v = read_knots(r, k, num_kv, "v", s.degree_v, s.num_v);
+  check_weights(r, k, num_ctrl);
+  s.ctrl.resize(num_ctrl, 3);
+  for (std::int64_t q = 0; q < num_ctrl; ++q)
+    for (int c = 0; c < 3; ++c, ++k)
+      s.ctrl(q, c) = r.real(k, "control point " + std::to_string(q) + " coordinate " +
+                                   std::string(1, "XYZ"[c]));
+  check_parameter_range(r, k, s);
+  return s;
+}
+
+// Start section: a fixed first line, then the description's paragraphs cut at 72 columns.
+std::vector<std::string> start_section(const std::string& description_text) {
+  std::vector<std::string> start = {
+      "interlin B-spline surface (IGES 5.3 entity 128, polynomial, untrimmed)"};
+  std::string description = description_text;
+  while (!description.empty() && (description.back() == '\n' || description.back() == '\r'))
+    description.pop_back();
+  if (description.empty())
+    return start;
+  for (std::size_t b = 0; b <= description.size();) {
+    auto e = description.find('\n', b);
+    if (e == std::string::npos)
+      e = description.size();
+    const std::string paragraph = printable(description.substr(b, e - b), std::string::npos);
+    for (std::size_t c = 0; c < paragraph.size() || c == 0; c += kDataColumns)
+      start.push_back(paragraph.substr(c, kDataColumns));
+    b = e + 1;
+  }
+  return start;
+}
+
+// Global section (IGES 5.3 §2.2.4): the 25 parameters, packed into 72-column lines.
+std::vector<std::string> global_section(const std::string& path, const BSplineSurface& s,
+                                        const IgesOptions& opt) {
   const UnitLabel unit = unit_label(opt.unit);
   const std::string date = iges_date();
   const double max_coord = s.ctrl.size() > 0 ? s.ctrl.cwiseAbs().maxCoeff() : 0.0;
@@ -475,26 +625,7 @@ void write_iges(const std::string& path, const BSplineSurface& s, const IgesOpti
   const double resolution = 1e-7 * (max_coord > 0.0 ? max_coord : 1.0);
   const std::string name = printable(std::filesystem::path(path).filename().string(), kMaxString);
   const std::string product = "interlin";
-
-  std::vector<std::string> start = {
-      "interlin B-spline surface (IGES 5.3 entity 128, polynomial, untrimmed)"};
-  std::string description = opt.description;
-  while (!description.empty() && (description.back() == '\n' || description.back() == '\r'))
-    description.pop_back();
-  if (!description.empty()) {
-    std::size_t b = 0;
-    while (b <= description.size()) {
-      auto e = description.find('\n', b);
-      if (e == std::string::npos)
-        e = description.size();
-      const std::string paragraph = printable(description.substr(b, e - b), std::string::npos);
-      for (std::size_t c = 0; c < paragraph.size() || c == 0; c += kDataColumns)
-        start.push_back(paragraph.substr(c, kDataColumns));
-      b = e + 1;
-    }
-  }
-
-  const std::vector<std::string> global = pack_record(
+  return pack_record(
       {
           hollerith(","),                               // 1 parameter delimiter
           hollerith(";"),                               // 2 record delimiter
@@ -523,16 +654,27 @@ void write_iges(const std::string& path, const BSplineSurface& s, const IgesOpti
           hollerith(date),                              // 25 model modification date
       },
       kDataColumns);
+}
 
-  const std::vector<std::string> param = pack_record(surface_parameters(s), kParamColumns);
-  const long num_param = static_cast<long>(param.size());
-
+// The two Directory Entry lines of the one entity 128, its parameter data `num_param` lines long.
+std::array<std::string, 2> directory_lines(long num_param) {
   std::array<char, 96> d1{}, d2{};
   std::snprintf(d1.data(), d1.size(), "%8d%8d%8d%8d%8d%8d%8d%8d%8s", 128, 1, 0, 0, 0, 0, 0, 0,
                 "00000000");
   std::snprintf(d2.data(), d2.size(), "%8d%8d%8d%8ld%8d%8s%8s%8s%8d", 128, 0, 0, num_param, 0, "",
                 "", "BSURFACE", 0);
+  return {d1.data(), d2.data()};
+}
 
+} // namespace
+
+void write_iges(const std::string& path, const BSplineSurface& s, const IgesOptions& opt) {
+  check_surface(s);
+  const std::vector<std::string> start = start_section(opt.description);
+  const std::vector<std::string> global = global_section(path, s, opt);
+  const std::vector<std::string> param = pack_record(surface_parameters(s), kParamColumns);
+  const long num_param = static_cast<long>(param.size());
+  const std::array<std::string, 2> d = directory_lines(num_param);
   write_file_atomically(path, [&](std::ostream& out) {
     long seq = 0;
     for (const std::string& l : start)
@@ -541,7 +683,7 @@ void write_iges(const std::string& path, const BSplineSurface& s, const IgesOpti
     seq = 0;
     for (const std::string& l : global)
       out << fixed_line(l, 'G', ++seq) << '\n';
-    out << fixed_line(d1.data(), 'D', 1) << '\n' << fixed_line(d2.data(), 'D', 2) << '\n';
+    out << fixed_line(d[0], 'D', 1) << '\n' << fixed_line(d[1], 'D', 2) << '\n';
     seq = 0;
     for (const std::string& l : param) {
       std::string data = l;
@@ -563,105 +705,11 @@ BSplineSurface read_iges_surface(const std::string& path) {
 
 BSplineSurface parse_iges_surface(std::string_view text, const std::string& path) {
   const IgesFile f = load(text, path);
-
-  DirectoryEntry e;
-  bool found = false;
-  for (long seq = 1; seq < f.count[2] && !found; seq += 2) {
-    e = directory_entry(f, seq);
-    found = e.type == 128;
-  }
-  if (!found)
-    f.fail(0, "no rational B-spline surface (entity 128) in the file");
+  const DirectoryEntry e = find_surface_entry(f);
   const long de_line = f.file_line(2, e.seq);
-
   long last_line = 0;
   const std::vector<Token> tokens = parameters(f, e, last_line);
-  const ParameterReader r{f, tokens, last_line, "entity 128"};
-  const long type = r.integer(0, "the entity type");
-  if (type != 128)
-    f.fail(tokens[0].line, "parameter data of Directory Entry " + std::to_string(e.seq) +
-                               " is entity " + std::to_string(type) + ", expected 128");
-  const long k1 = r.integer(1, "K1"), k2 = r.integer(2, "K2");
-  const long m1 = r.integer(3, "M1"), m2 = r.integer(4, "M2");
-  constexpr long kMaxIndex = 10'000'000;
-  if (m1 < 1 || m2 < 1 || m1 > 64 || m2 > 64)
-    f.fail(tokens[3].line, "degrees M1 = " + std::to_string(m1) + ", M2 = " + std::to_string(m2) +
-                               " (1..64 supported)");
-  if (k1 < m1 || k2 < m2 || k1 > kMaxIndex || k2 > kMaxIndex)
-    f.fail(tokens[1].line, "K1 = " + std::to_string(k1) + ", K2 = " + std::to_string(k2) +
-                               " do not fit degrees " + std::to_string(m1) + ", " +
-                               std::to_string(m2) + " (need K >= M)");
-  long prop[5];
-  for (int k = 0; k < 5; ++k) {
-    prop[k] = r.integer(static_cast<std::size_t>(5 + k), "PROP" + std::to_string(k + 1));
-    if (prop[k] != 0 && prop[k] != 1)
-      f.fail(tokens[static_cast<std::size_t>(5 + k)].line,
-             "PROP" + std::to_string(k + 1) + " must be 0 or 1, is " + std::to_string(prop[k]));
-  }
-
-  BSplineSurface s;
-  s.degree_u = static_cast<int>(m1);
-  s.degree_v = static_cast<int>(m2);
-  s.num_u = k1 + 1;
-  s.num_v = k2 + 1;
-  s.closed_u = prop[0] == 1;
-  const std::int64_t num_ku = k1 + m1 + 2, num_kv = k2 + m2 + 2;
-  const std::int64_t num_ctrl = static_cast<std::int64_t>(s.num_u) * s.num_v;
-  const std::int64_t needed = 10 + num_ku + num_kv + 4 * num_ctrl + 4;
-  if (static_cast<std::int64_t>(tokens.size()) < needed)
-    f.fail(last_line, "entity 128 with K1 = " + std::to_string(k1) +
-                          ", K2 = " + std::to_string(k2) + " needs " + std::to_string(needed) +
-                          " parameters, the record has " + std::to_string(tokens.size()));
-
-  std::size_t k = 10;
-  auto read_knots = [&](Eigen::VectorXd& knots, std::int64_t count, const char* dir, int degree,
-                        Eigen::Index num) {
-    const std::size_t first = k;
-    knots.resize(count);
-    for (Eigen::Index q = 0; q < count; ++q, ++k) {
-      knots(q) = r.real(k, std::string(dir) + " knot " + std::to_string(q));
-      if (q > 0 && knots(q) < knots(q - 1))
-        f.fail(tokens[k].line, std::string(dir) + " knots decrease at knot " + std::to_string(q));
-    }
-    if (!is_clamped(knots, degree, num))
-      f.fail(tokens[first].line, std::string(dir) +
-                                     " knot vector is not clamped (end knots of multiplicity "
-                                     "degree + 1 = " +
-                                     std::to_string(degree + 1) + " are required)");
-  };
-  read_knots(s.knots_u, num_ku, "u", s.degree_u, s.num_u);
-  read_knots(s.knots_v, num_kv, "v", s.degree_v, s.num_v);
-
-  const double w0 = r.real(k, "weight W(0,0)");
-  for (std::int64_t q = 0; q < num_ctrl; ++q, ++k) {
-    const double w = r.real(k, "weight " + std::to_string(q));
-    if (!(w > 0.0))
-      f.fail(tokens[k].line, "weight " + std::to_string(q) + " is not positive");
-    // Equal weights cancel in the rational form: the surface is then polynomial.
-    if (std::abs(w - w0) > 1e-12 * w0)
-      f.fail(tokens[k].line, "rational surface (unequal weights) is not supported");
-  }
-
-  s.ctrl.resize(num_ctrl, 3);
-  for (std::int64_t q = 0; q < num_ctrl; ++q)
-    for (int c = 0; c < 3; ++c, ++k)
-      s.ctrl(q, c) = r.real(k, "control point " + std::to_string(q) + " coordinate " +
-                                   std::string(1, "XYZ"[c]));
-
-  // U(0), U(1), V(0), V(1) must be the knot domain: a restricted range is not representable.
-  const double range[4] = {r.real(k, "U(0)"), r.real(k + 1, "U(1)"), r.real(k + 2, "V(0)"),
-                           r.real(k + 3, "V(1)")};
-  const double domain[4] = {s.knots_u(s.degree_u), s.knots_u(s.num_u), s.knots_v(s.degree_v),
-                            s.knots_v(s.num_v)};
-  for (int q = 0; q < 4; ++q) {
-    const double span = q < 2 ? domain[1] - domain[0] : domain[3] - domain[2];
-    if (std::abs(range[q] - domain[q]) > 1e-9 * std::abs(span))
-      f.fail(tokens[k + static_cast<std::size_t>(q)].line,
-             "parameter range [" + iges_real(range[0]) + ", " + iges_real(range[1]) + "] x [" +
-                 iges_real(range[2]) + ", " + iges_real(range[3]) +
-                 "] differs from the knot domain; restricted surfaces are not supported");
-  }
-
+  BSplineSurface s = surface_of_parameters(ParameterReader{f, tokens, last_line, "entity 128"}, e);
   apply_transform(f, e.transform, de_line, s.ctrl);
 
   try {
