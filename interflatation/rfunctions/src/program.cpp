@@ -14,6 +14,7 @@
 #include <string>
 #include <tuple>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace interlin::rf {
@@ -82,58 +83,62 @@ private:
   std::unordered_map<const Node*, int> by_ptr_;
 };
 
-Program build_program(const NodePtr& root) {
-  Linearizer lin;
-  const int root_id = lin.visit(root);
-  const auto& items = lin.items;
-  const int n = static_cast<int>(items.size());
-  auto is_c = [&](int id) { return id >= 0 && items[id].op == Op::constant; };
+using Items = std::vector<Linearizer::Item>;
 
-  // Immediate forms: a constant operand of + - * / becomes the instruction's k.
-  std::vector<Instr> code;
-  std::vector<bool> needed(n, false); // items that must be materialised
-  std::vector<Instr> pending(n);      // instruction per item, operands still item ids
+// Item i's instruction, operands still item ids; a constant operand of + - * / becomes the
+// instruction's k (immediate form), x^2 becomes a square.
+Instr immediate_form(const Items& items, int i) {
+  const auto& it = items[i];
+  auto is_c = [&](int id) { return id >= 0 && items[id].op == Op::constant; };
+  const bool ca = is_c(it.a), cb = is_c(it.b);
+  if (it.op == Op::add && (ca || cb))
+    return {Op::add_k, i, ca ? it.b : it.a, ca ? it.b : it.a, items[ca ? it.a : it.b].k};
+  if (it.op == Op::sub && cb)
+    return {Op::add_k, i, it.a, it.a, -items[it.b].k};
+  if (it.op == Op::sub && ca)
+    return {Op::k_sub, i, it.b, it.b, items[it.a].k};
+  if (it.op == Op::mul && (ca || cb))
+    return {Op::mul_k, i, ca ? it.b : it.a, ca ? it.b : it.a, items[ca ? it.a : it.b].k};
+  if (it.op == Op::div && cb)
+    return {Op::div_k, i, it.a, it.a, items[it.b].k};
+  if (it.op == Op::div && ca)
+    return {Op::k_div, i, it.b, it.b, items[it.a].k};
+  if (it.op == Op::pow_k && it.k == 2)
+    return {Op::square, i, it.a, it.a, 0};
+  return {
+      it.op,         i, it.a, it.b < 0 ? it.a : it.b, it.k, it.curve.get(), it.c < 0 ? it.a : it.c,
+      it.field.get()};
+}
+
+// The instructions the root needs, children before parents (constants folded into immediates
+// are not materialised).
+std::vector<Instr> select_instructions(const Items& items, int root_id) {
+  const int n = static_cast<int>(items.size());
+  std::vector<bool> needed(n, false);
+  std::vector<Instr> pending(n);
   needed[root_id] = true;
   for (int i = n - 1; i >= 0; --i) {
     if (!needed[i])
       continue;
-    const auto& it = items[i];
-    Instr in{it.op,
-             i,
-             it.a,
-             it.b < 0 ? it.a : it.b,
-             it.k,
-             it.curve.get(),
-             it.c < 0 ? it.a : it.c,
-             it.field.get()};
-    const bool ca = is_c(it.a), cb = is_c(it.b);
-    if (it.op == Op::add && (ca || cb))
-      in = {Op::add_k, i, ca ? it.b : it.a, ca ? it.b : it.a, items[ca ? it.a : it.b].k};
-    else if (it.op == Op::sub && cb)
-      in = {Op::add_k, i, it.a, it.a, -items[it.b].k};
-    else if (it.op == Op::sub && ca)
-      in = {Op::k_sub, i, it.b, it.b, items[it.a].k};
-    else if (it.op == Op::mul && (ca || cb))
-      in = {Op::mul_k, i, ca ? it.b : it.a, ca ? it.b : it.a, items[ca ? it.a : it.b].k};
-    else if (it.op == Op::div && cb)
-      in = {Op::div_k, i, it.a, it.a, items[it.b].k};
-    else if (it.op == Op::div && ca)
-      in = {Op::k_div, i, it.b, it.b, items[it.a].k};
-    else if (it.op == Op::pow_k && it.k == 2)
-      in = {Op::square, i, it.a, it.a, 0};
-    pending[i] = in;
-    if (detail::arity(it.op) > 0) {
-      needed[in.a] = true;
-      needed[in.b] = true;
-      needed[in.c] = true;
+    pending[i] = immediate_form(items, i);
+    if (detail::arity(items[i].op) > 0) {
+      needed[pending[i].a] = true;
+      needed[pending[i].b] = true;
+      needed[pending[i].c] = true;
     }
   }
+  std::vector<Instr> code;
   for (int i = 0; i < n; ++i)
     if (needed[i])
       code.push_back(pending[i]);
+  return code;
+}
 
-  // Register allocation: a slot is freed after the last instruction that reads it; the
-  // destination is taken before the operands are freed, so no instruction writes its input.
+// Register allocation: a slot is freed after the last instruction that reads it; the
+// destination is taken before the operands are freed, so no instruction writes its input.
+// Rewrites `code`'s item ids into slots; returns the number of slots and the root's slot.
+std::pair<int, int> allocate_registers(const Items& items, int root_id, std::vector<Instr>& code) {
+  const int n = static_cast<int>(items.size());
   std::vector<int> last_use(n, -1);
   for (int j = 0; j < static_cast<int>(code.size()); ++j)
     if (detail::arity(items[code[j].dst].op) > 0) {
@@ -171,11 +176,16 @@ Program build_program(const NodePtr& root) {
           slot_of[operand] = -1; // freed once, even when read twice
         }
   }
+  return {slots, slot_of[root_id]};
+}
+
+Program build_program(const NodePtr& root) {
+  Linearizer lin;
+  const int root_id = lin.visit(root);
   Program p;
-  p.code = std::move(code);
-  p.slots = slots;
-  p.out = slot_of[root_id];
-  for (const auto& it : items) {
+  p.code = select_instructions(lin.items, root_id);
+  std::tie(p.slots, p.out) = allocate_registers(lin.items, root_id, p.code);
+  for (const auto& it : lin.items) {
     if (it.curve)
       p.curves.push_back(it.curve);
     if (it.field)
