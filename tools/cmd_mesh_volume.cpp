@@ -12,6 +12,7 @@
 #include "interlin/reconstruction/meshing/volume_quality.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <stdexcept>
 #include <thread>
@@ -176,6 +177,12 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
               << fmt(info.coverage.body, 7) << " on the grid clipped at F = 0)\n";
 }
 
+// x > 0 rounded down to 2 significant digits: a suggested cell must not grow by rounding.
+double two_digits_down(double x) {
+  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1);
+  return std::floor(x / unit) * unit;
+}
+
 // The fix for a mesh that leaves out more than kLostVolumeWarning of the body: a cell at which
 // walls as thick as the lost ones keep inner cells (dual hexahedra: grid nodes), or the clipped
 // grid.
@@ -186,7 +193,7 @@ std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions&
                                                "held boundary points)"
                                              : " thick have no inner cell under the boundary "
                                                "layer") +
-         ": use --cell " + fmt(info.suggested_cell, 2) + " or smaller, or " +
+         ": use --cell " + fmt(two_digits_down(info.suggested_cell), 2) + " or smaller, or " +
          (tets ? "--boundary cut" : "--volume tet");
 }
 

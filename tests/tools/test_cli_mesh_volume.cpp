@@ -145,7 +145,7 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
   CHECK_THAT(r.out, Catch::Contains("coverage     95.8 % of the body's volume left out"));
   CHECK_THAT(r.err, Catch::Contains("\nwarning: the mesh leaves out 96 % of the body's volume "
                                     "(walls about 0.0962 thick have no inner cell under the "
-                                    "boundary layer: use --cell 0.016 or smaller, or --volume "
+                                    "boundary layer: use --cell 0.021 or smaller, or --volume "
                                     "tet)\n"));
   const Run quiet = run(mesh + "hex --cell 0.05 -q");
   CHECK(quiet.err.empty());

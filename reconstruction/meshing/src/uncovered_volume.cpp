@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -73,9 +74,10 @@ std::vector<std::pair<long, int>> elements_by_cube(const RegularGrid& g, const E
   return out;
 }
 
-// The area of the faces of the flagged tetrahedra of T that lie on the boundary of T.
+// The area of each tetrahedron's faces that lie on the boundary of T (F = 0 or the box), and the
+// sum over the flagged ones in tetrahedron order.
 double boundary_area_of(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T,
-                        const std::vector<char>& flagged) {
+                        const std::vector<char>& flagged, std::vector<double>& per_tetrahedron) {
   const Eigen::MatrixXi B = boundary_facets(T);
   std::vector<std::array<int, 3>> keys(size_t(B.rows()));
   for (long r = 0; r < B.rows(); ++r) {
@@ -83,10 +85,9 @@ double boundary_area_of(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T,
     std::sort(keys[size_t(r)].begin(), keys[size_t(r)].end());
   }
   std::sort(keys.begin(), keys.end());
+  per_tetrahedron.assign(size_t(T.rows()), 0);
   double area = 0;
-  for (long e = 0; e < T.rows(); ++e) {
-    if (!flagged[size_t(e)])
-      continue;
+  for (long e = 0; e < T.rows(); ++e)
     for (int skip = 0; skip < 4; ++skip) {
       std::array<int, 3> k;
       for (int j = 0, n = 0; j < 4; ++j)
@@ -95,14 +96,92 @@ double boundary_area_of(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T,
       std::sort(k.begin(), k.end());
       if (std::binary_search(keys.begin(), keys.end(), k)) {
         const Eigen::Vector3d a = P.row(k[0]), b = P.row(k[1]), c = P.row(k[2]);
-        area += (b - a).cross(c - a).norm() / 2;
+        const double facet = (b - a).cross(c - a).norm() / 2;
+        per_tetrahedron[size_t(e)] += facet;
+        if (flagged[size_t(e)])
+          area += facet;
       }
     }
-  }
   return area;
 }
 
+// (cube, sum of (volume, area)) over the pieces e with keep[e], one entry per cube, by cube.
+std::vector<std::pair<long, Eigen::Vector2d>> per_cube(const std::vector<long>& cube_of,
+                                                       const std::vector<Eigen::Vector2d>& value,
+                                                       const std::vector<char>* keep) {
+  std::vector<std::pair<long, Eigen::Vector2d>> out;
+  for (size_t e = 0; e < cube_of.size(); ++e)
+    if (keep == nullptr || (*keep)[e]) {
+      if (!out.empty() && out.back().first == cube_of[e])
+        out.back().second += value[e];
+      else
+        out.emplace_back(cube_of[e], value[e]);
+    }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  size_t n = 0; // pieces of one cube that were not consecutive
+  for (size_t m = 0; m < out.size(); ++m)
+    if (n > 0 && out[n - 1].first == out[m].first)
+      out[n - 1].second += out[m].second;
+    else
+      out[n++] = out[m];
+  out.resize(n);
+  return out;
+}
+
+// (local wall thickness, lost volume) per cube with lost pieces, thinnest first: 2 V / A of the
+// body's volume V and boundary area A within kThicknessReach cubes (infinite with no boundary
+// there).
+std::vector<std::pair<double, double>>
+thickness_distribution(const std::vector<std::pair<long, Eigen::Vector2d>>& lost_in_cube,
+                       const std::vector<std::pair<long, Eigen::Vector2d>>& body_in_cube,
+                       const Eigen::Array3i& cells) {
+  std::vector<std::pair<double, double>> out;
+  out.reserve(lost_in_cube.size());
+  const long nx = cells(0), ny = cells(1), nz = cells(2), r = kThicknessReach;
+  for (const auto& [cube, lost] : lost_in_cube) {
+    const long i = cube % nx, j = (cube / nx) % ny, k = cube / (nx * ny);
+    Eigen::Vector2d near = Eigen::Vector2d::Zero(); // body volume, boundary area
+    for (long z = std::max(0L, k - r); z <= std::min(nz - 1, k + r); ++z)
+      for (long y = std::max(0L, j - r); y <= std::min(ny - 1, j + r); ++y) {
+        const long row = nx * (y + ny * z);
+        // a row of cubes i - r .. i + r is contiguous in cube order
+        auto it =
+            std::lower_bound(body_in_cube.begin(), body_in_cube.end(), row + std::max(0L, i - r),
+                             [](const auto& x, long c) { return x.first < c; });
+        for (; it != body_in_cube.end() && it->first <= row + std::min(nx - 1, i + r); ++it)
+          near += it->second;
+      }
+    out.emplace_back(near(1) > 0 ? 2 * near(0) / near(1) : std::numeric_limits<double>::infinity(),
+                     lost(0));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 } // namespace
+
+double cell_keeping(const UncoveredVolume& u, double h, double budget, double cells_across_wall,
+                    double kept_wall_cells) {
+  if (u.lost <= budget)
+    return 0;
+  double edges = 0; // lost from walls the grid should keep
+  for (const auto& [thickness, volume] : u.lost_by_thickness)
+    edges += thickness >= kept_wall_cells * h ? volume : 0;
+  constexpr int kSteps = 32, kMaxHalvings = 8; // candidates h 2^(-k / 32), down to h / 256
+  for (int k = 1; k <= kSteps * kMaxHalvings; ++k) {
+    const double cell = h * std::exp2(-double(k) / kSteps);
+    double lost = edges * cell / h;
+    for (const auto& [thickness, volume] : u.lost_by_thickness) {
+      if (thickness >= cells_across_wall * cell) // thinnest first: the rest are kept
+        break;
+      lost += thickness < kept_wall_cells * h ? volume : 0;
+    }
+    if (lost <= budget)
+      return cell;
+  }
+  return h * std::exp2(-kMaxHalvings);
+}
 
 UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g,
                                  const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, int threads) {
@@ -118,6 +197,7 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
   const long tasks = (T.rows() + kChunk - 1) / kChunk;
   std::vector<double> body_part(size_t(tasks), 0), lost_part(size_t(tasks), 0);
   std::vector<char> lost(size_t(T.rows()), 0);
+  std::vector<long> cube_of(size_t(T.rows()));
   detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
     for (long e = task * kChunk; e < std::min(T.rows(), (task + 1) * kChunk); ++e) {
       const Eigen::Vector3d a = P.row(T(e, 0)), b = P.row(T(e, 1)), c = P.row(T(e, 2)),
@@ -135,6 +215,7 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
       bool covered = false;
       for (auto it = range.first; it != range.second && !covered; ++it)
         covered = element_contains(V, C, it->second, p);
+      cube_of[size_t(e)] = cube;
       body_part[size_t(task)] += volume;
       if (!covered)
         lost[size_t(e)] = 1, lost_part[size_t(task)] += volume;
@@ -143,8 +224,18 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
   UncoveredVolume out;
   for (long t = 0; t < tasks; ++t)
     out.body += body_part[size_t(t)], out.lost += lost_part[size_t(t)];
-  if (out.lost > 0)
-    out.lost_area = boundary_area_of(P, T, lost);
+  if (out.lost == 0)
+    return out;
+  std::vector<double> area;
+  out.lost_area = boundary_area_of(P, T, lost, area);
+  std::vector<Eigen::Vector2d> piece(size_t(T.rows()));
+  for (long e = 0; e < T.rows(); ++e) {
+    const Eigen::Vector3d a = P.row(T(e, 0)), b = P.row(T(e, 1)), c = P.row(T(e, 2)),
+                          d = P.row(T(e, 3));
+    piece[size_t(e)] = Eigen::Vector2d(std::abs(det(a, b, c, d)) / 6, area[size_t(e)]);
+  }
+  out.lost_by_thickness = thickness_distribution(per_cube(cube_of, piece, &lost),
+                                                 per_cube(cube_of, piece, nullptr), cells);
   return out;
 }
 

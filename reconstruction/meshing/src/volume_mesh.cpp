@@ -414,7 +414,7 @@ VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g, Eigen::Vect
 }
 
 // The part of the body (the grid clipped at F = 0, zero sheets filled in `whole`) that no element
-// of vm covers, and the cell that would keep walls as thick as the lost ones.
+// of vm covers, and the cell that would keep the loss within kLostVolumeWarning.
 void measure_coverage(const ImplicitFunction& f, const RegularGrid& g, const Eigen::VectorXd& whole,
                       const VolumeMeshOptions& o, const VolumeMesh& vm, double cells_across_wall,
                       VolumeMeshInfo& out) {
@@ -422,7 +422,12 @@ void measure_coverage(const ImplicitFunction& f, const RegularGrid& g, const Eig
     o.progress("measuring the volume the mesh leaves out (the grid clipped at F = 0)");
   const CutTetrahedra body = cut_tetrahedra(f, g, whole, o.epsilon, o.threads);
   out.coverage = uncovered_volume(body, g, vm.V, vm.C, o.threads);
-  out.suggested_cell = out.coverage.thickness() / cells_across_wall;
+  // Dual hexahedra: the mean lost thickness (their walls and slivers differ from the layer's).
+  out.suggested_cell =
+      cells_across_wall == kCellsAcrossDualWall
+          ? out.coverage.thickness() / kCellsAcrossDualWall
+          : cell_keeping(out.coverage, g.spacing.minCoeff(), kLostVolumeWarning * out.coverage.body,
+                         kCellsAcrossWall, kKeptWallCells);
 }
 
 // Hexahedra dual to the inside nodes of g padded by a cell (dual_hexahedra), nodes on internal zero

@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 using namespace interlin;
@@ -108,6 +109,26 @@ TEST_CASE("uncovered_volume: hexahedra of the inside cubes leave out the rest of
   CHECK(std::abs(u.lost - expected) < 0.02 * expected); // measured 1.1 %
 }
 
+TEST_CASE("cell_keeping: the largest candidate cell whose predicted loss fits the budget",
+          "[volume]") {
+  // Candidates h 2^(-k / 32). Walls of local thickness 0.1 and 0.2 (volumes 0.3, 0.2) at h = 0.05,
+  // budget 0.25: the 0.1 wall must stay, so the cell is the largest candidate <= 0.1 / 4.5 (the
+  // 0.2 wall stays too); budget 0.35: only the 0.2 wall must stay, <= 0.2 / 4.5.
+  UncoveredVolume u;
+  u.body = 10, u.lost = 0.5;
+  u.lost_by_thickness = {{0.1, 0.3}, {0.2, 0.2}};
+  const double h = 0.05, step = std::exp2(-1.0 / 32);
+  for (const auto& [budget, thickness] : {std::pair{0.25, 0.1}, std::pair{0.35, 0.2}}) {
+    const double cell = cell_keeping(u, h, budget, 4.5, 6);
+    CHECK(cell <= thickness / 4.5);
+    CHECK(cell > step * thickness / 4.5);
+  }
+  CHECK(cell_keeping(u, h, 0.5, 4.5, 6) == 0); // all within the budget
+  // A loss from a wall 10 cells thick (an edge) shrinks as the cell: half the cell halves it.
+  u.lost_by_thickness = {{10 * h, 0.5}};
+  CHECK(cell_keeping(u, h, 0.25, 4.5, 6) == h / 2);
+}
+
 namespace {
 
 // The projected layer's mesh of f at cell h, its info and volume.
@@ -133,8 +154,9 @@ TEST_CASE("volume_mesh: the projected layer reports the thin walls it loses", "[
   // A spherical shell of radius 0.25 and thickness T = 0.1 (every wall orientation, smooth): at
   // h = T / 2 no cell lies inside the wall and the layer loses it (measured: hexahedra 96 %,
   // tetrahedra 50 %), the diagnostic says so and measures T (0.0962: 2 V / A of the shell is
-  // 0.974 T); at the cell it suggests (thickness / 6) it keeps the wall (measured 0 lost; on
-  // shells of radius 0.4, T = 0.1 and 0.06: 0 lost at T / 6, up to 40 % at T / 4).
+  // 0.974 T); the cell it suggests (cell_keeping: T / 4.65 from the local thickness) keeps the
+  // wall (measured 0 lost; on shells of radius 0.4, T = 0.1 and 0.06: 0 lost at T / 4.5, 28-35 %
+  // at T / 4 on two of the three; docs/benchmarks.md).
   for (const double T : {0.1}) {
     const ImplicitFunction shell = test::implicit(
         [T](double x, double y, double z) {

@@ -9,6 +9,9 @@
 
 #include <Eigen/Core>
 
+#include <utility>
+#include <vector>
+
 namespace interlin {
 
 struct UncoveredVolume {
@@ -17,7 +20,25 @@ struct UncoveredVolume {
   double lost_area = 0; // area of F = 0 (the clipped tetrahedra's boundary) bounding those pieces
   // Mean thickness of the lost walls, 2 lost / lost_area (a sheet has two faces; 0: none lost).
   double thickness() const { return lost_area > 0 ? 2 * lost / lost_area : 0; }
+  // The lost volume by local wall thickness, thinnest first: (thickness, volume) per background
+  // cube holding lost pieces, the thickness 2 V / A of the body's volume V and boundary area A
+  // within kThicknessReach cubes of it along each axis (infinite with no boundary there). A wall's
+  // own thickness, not that of its lost part (which partial cover thins), and local: a tapering
+  // wall is thin at its edge and thick at its root.
+  std::vector<std::pair<double, double>> lost_by_thickness;
 };
+
+// Cubes along each axis either side of a cube whose body volume and area give its local
+// thickness: lost walls are up to about 6 cells thick, 3 either side spans them.
+constexpr int kThicknessReach = 3;
+
+// The largest cell h' (of h 2^(-k / 32), k >= 1; at most 8 halvings) whose predicted loss is within
+// `budget`: the lost walls thinner than kept_wall_cells h stay lost while thinner than
+// cells_across_wall h'; what was lost from thicker walls (sharp edges, held nodes) shrinks as
+// h' / h (slower than measured: discs' rims lose h^1 .. h^2). 0 when u.lost is within budget.
+// Inputs: u (uncovered_volume at cell h), budget (volume), the two wall rules in cells.
+double cell_keeping(const UncoveredVolume& u, double h, double budget, double cells_across_wall,
+                    double kept_wall_cells);
 
 // Each piece of `body` (a convex tetrahedron inside a background cube of g) is lost when no
 // element of (V, C) contains its centroid: elements are bucketed by the cubes their bounding boxes

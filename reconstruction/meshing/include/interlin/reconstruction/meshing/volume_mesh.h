@@ -81,8 +81,9 @@ struct VolumeMeshInfo {
   // with no inner cell under the layer; uncovered_volume). cut: not measured (all 0; the mesh is
   // the clipped grid).
   UncoveredVolume coverage;
-  // Where coverage.lost > 0: a cell size at which walls as thick as the lost ones
-  // (coverage.thickness()) keep their volume, thickness / kCellsAcrossWall. 0: nothing lost.
+  // Where more than kLostVolumeWarning is lost: a cell at which the loss is predicted within it
+  // (projected layer: cell_keeping with kCellsAcrossWall and kKeptWallCells on the lost walls'
+  // local thickness; dual: coverage.thickness() / kCellsAcrossDualWall). 0: nothing to suggest.
   double suggested_cell = 0;
   // The fraction of the body's volume left out (0 when not measured).
   double lost_fraction() const { return coverage.body > 0 ? coverage.lost / coverage.body : 0; }
@@ -91,11 +92,17 @@ struct VolumeMeshInfo {
 // The lost fraction above which the CLI and Python warn: the volume target of issue 14 (0.5 %).
 constexpr double kLostVolumeWarning = 0.005;
 
-// Cells across a wall for the projected layer to keep it (default margin): two inner cells
-// stacked along the worst direction span (sqrt 3 + 1 / sqrt 3) h, each face gives up 0.35 h, plus
-// up to a cell for the grid's offset, about 5 h; measured on spherical shells (every
-// orientation): nothing lost at 6 cells, up to 40 % lost at 4 (test_uncovered_volume.cpp).
-constexpr double kCellsAcrossWall = 6;
+// Cells across a wall (its local thickness, UncoveredVolume::lost_by_thickness) for the projected
+// layer to keep it (default margin): two inner cells stacked along the worst direction span
+// (sqrt 3 + 1 / sqrt 3) h, each face gives up 0.35 h, plus up to a cell for the grid's offset;
+// measured on spherical shells (every orientation; radius 0.25 and 0.4, T = 0.06 and 0.1): 28-35 %
+// lost at T / 4 (0 on one), nothing at T / 4.5 (test_uncovered_volume.cpp, docs/benchmarks.md).
+constexpr double kCellsAcrossWall = 4.5;
+
+// Walls at least this many cells thick lose nothing to the missing inner cells (shells: nothing
+// lost from 4.5 cells on, 6 leaves room for the local thickness's error); what they lose is at
+// sharp edges and under held nodes, which shrink with the cell (cell_keeping).
+constexpr double kKeptWallCells = 6;
 
 // The same for dual hexahedra: a slab thicker than a cell holds a layer of grid nodes in any
 // orientation, which the dual mesh keeps; 2 leaves a cell of room. Their coverage also counts the
