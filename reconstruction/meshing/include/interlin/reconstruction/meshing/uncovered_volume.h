@@ -29,8 +29,9 @@ struct UncoveredVolume {
 };
 
 // Cubes along each axis either side of a cube whose body volume and area give its local
-// thickness: lost walls are up to about 6 cells thick, 3 either side spans them.
-constexpr int kThicknessReach = 3;
+// thickness: lost walls are up to about 6 cells thick, 4 either side spans them (3 overestimated
+// shells 4 cells thick by 15 %, which then counted as edges).
+constexpr int kThicknessReach = 4;
 
 // The largest cell h' (of h 2^(-k / 32), k >= 1; at most 8 halvings) whose predicted loss is within
 // `budget`: the lost walls thinner than kept_wall_cells h stay lost while thinner than
