@@ -159,6 +159,24 @@ thickness_distribution(const std::vector<std::pair<long, Eigen::Vector2d>>& lost
   return out;
 }
 
+// out.lost_area and out.lost_by_thickness from the lost pieces (flagged) and each piece's cube.
+void measure_lost_walls(const CutTetrahedra& body, const Eigen::Array3i& cells,
+                        const std::vector<char>& lost, const std::vector<long>& cube_of,
+                        UncoveredVolume& out) {
+  const Eigen::MatrixXd& P = body.V;
+  const Eigen::MatrixXi& T = body.C;
+  std::vector<double> area;
+  out.lost_area = boundary_area_of(P, T, lost, area);
+  std::vector<Eigen::Vector2d> piece(size_t(T.rows())); // volume, boundary area
+  for (long e = 0; e < T.rows(); ++e) {
+    const Eigen::Vector3d a = P.row(T(e, 0)), b = P.row(T(e, 1)), c = P.row(T(e, 2)),
+                          d = P.row(T(e, 3));
+    piece[size_t(e)] = Eigen::Vector2d(std::abs(det(a, b, c, d)) / 6, area[size_t(e)]);
+  }
+  out.lost_by_thickness = thickness_distribution(per_cube(cube_of, piece, &lost),
+                                                 per_cube(cube_of, piece, nullptr), cells);
+}
+
 } // namespace
 
 double cell_keeping(const UncoveredVolume& u, double h, double budget, double cells_across_wall,
@@ -226,16 +244,7 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
     out.body += body_part[size_t(t)], out.lost += lost_part[size_t(t)];
   if (out.lost == 0)
     return out;
-  std::vector<double> area;
-  out.lost_area = boundary_area_of(P, T, lost, area);
-  std::vector<Eigen::Vector2d> piece(size_t(T.rows()));
-  for (long e = 0; e < T.rows(); ++e) {
-    const Eigen::Vector3d a = P.row(T(e, 0)), b = P.row(T(e, 1)), c = P.row(T(e, 2)),
-                          d = P.row(T(e, 3));
-    piece[size_t(e)] = Eigen::Vector2d(std::abs(det(a, b, c, d)) / 6, area[size_t(e)]);
-  }
-  out.lost_by_thickness = thickness_distribution(per_cube(cube_of, piece, &lost),
-                                                 per_cube(cube_of, piece, nullptr), cells);
+  measure_lost_walls(body, cells, lost, cube_of, out);
   return out;
 }
 

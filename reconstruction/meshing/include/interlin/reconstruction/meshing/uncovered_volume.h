@@ -48,7 +48,8 @@ double cell_keeping(const UncoveredVolume& u, double h, double budget, double ce
 // curved faces of neighbours may leave slivers, small against a cube).
 // Inputs:  body (cut_tetrahedra on g), g, V #V by 3, C #C by 4 (tetrahedra) or #C by 8 (hexahedra,
 //          VTK order), threads (0: all cores)
-// Output:  the body's volume, the lost volume and the area of F = 0 around it
+// Output:  the body's volume, the lost volume, the area of F = 0 around it and the lost volume by
+//          local wall thickness
 // See also: volume_mesh (VolumeMeshInfo::coverage), cut_tetrahedra
 UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g,
                                  const Eigen::MatrixXd& V, const Eigen::MatrixXi& C,
