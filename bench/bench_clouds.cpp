@@ -10,7 +10,7 @@
 //
 // Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R] [--depths D,D]
 //                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
-//                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--thin-walls]
+//                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--no-thin-walls]
 // (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
 // inspection.)
 // (--methods: which of interlin (unstructured and, for slices, sectioned), PCL and Open3D run;
@@ -24,7 +24,8 @@
 // units of the case's sigma and the share of the Chamfer from distances above 3 sigma.)
 // (--floor: per noisy case with a truth a line "floor:" with the noisy points' own distances to the
 // truth and the point-set Chamfer of the points and of their projections onto the truth.)
-// (--thin-walls: every case's normals prepared with CloudPrepOptions::thin_walls on.)
+// (--no-thin-walls: every case's normals prepared with CloudPrepOptions::thin_walls off, the
+// orientation before session 9.)
 
 #include "cloud_cases.h"
 #include "poisson_baselines.h"
@@ -426,7 +427,7 @@ struct Options {
   int points = 100000, resolution = 256, threads = 2;
   std::vector<int> depths{8, 9};
   std::vector<std::string> fits; // --fit, one interlin row each
-  bool diagnose = false, floor = false, thin_walls = false;
+  bool diagnose = false, floor = false, no_thin_walls = false;
 };
 
 struct UsageError : std::runtime_error {
@@ -464,8 +465,8 @@ Options parse_options(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--diagnose" || a == "--floor" || a == "--thin-walls") { // flags without a value
-      (a == "--floor" ? o.floor : a == "--diagnose" ? o.diagnose : o.thin_walls) = true;
+    if (a == "--diagnose" || a == "--floor" || a == "--no-thin-walls") { // flags without a value
+      (a == "--floor" ? o.floor : a == "--diagnose" ? o.diagnose : o.no_thin_walls) = true;
       --i;
       continue;
     }
@@ -513,7 +514,7 @@ int main(int argc, char** argv) {
     std::cerr << "bench_clouds: " << e.what() << "\n";
     return 2;
   }
-  set_thin_walls(o.thin_walls);
+  set_thin_walls(!o.no_thin_walls);
   const std::string &cases = o.cases, &methods_wanted = o.methods;
   const int points = o.points, resolution = o.resolution, threads = o.threads;
   const std::vector<int>& depths = o.depths;

@@ -122,7 +122,7 @@ void add_noise(PointCloud& c, double sigma, unsigned seed) {
       c.points(i, a) += G(rng);
 }
 
-bool thin_walls = false; // set_thin_walls
+bool thin_walls = CloudPrepOptions{}.thin_walls; // set_thin_walls
 
 // What an unstructured scan gives every method: points only; normals from prepare_cloud.
 // `inward`: how many of those normals point against the scan's true normals (prepare_cloud

@@ -60,8 +60,8 @@ CloudCase blade_slices(bool radial, int slices, int per_slice, double sigma, uns
 // gradient as normal, noise sigma relative to the bounding-box diagonal.
 CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned seed);
 
-// Whether the cases' prepare_cloud runs with CloudPrepOptions::thin_walls (bench_clouds
-// --thin-walls; off by default, as in prepare_cloud).
+// Whether the cases' prepare_cloud runs with CloudPrepOptions::thin_walls (on by default, as in
+// prepare_cloud; bench_clouds --no-thin-walls turns it off).
 void set_thin_walls(bool on);
 
 // data/clouds/bun0.pcd (its normals re-oriented by prepare_cloud).

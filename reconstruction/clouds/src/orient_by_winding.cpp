@@ -2,6 +2,7 @@
 #include "interlin/reconstruction/clouds/orient_normals.h"
 
 #include "nearest_neighbours.h"
+#include "orientation_tree.h"
 #include "winding_number.h"
 
 #include "interlin/reconstruction/clouds/noise_level.h"
@@ -40,12 +41,17 @@ constexpr int kProbesPerPatch = 40;
 constexpr double kProbeSpacings = 2, kProbeSigmas = 3;
 constexpr int kAreaNeighbours = 8;   // point_areas' k
 constexpr Index kCheckProbes = 4000; // outside_winding's probes
-// Thin-wall sides (opt-in): the neighbours searched for the other side of the wall, the offsets
-// along the normal beyond which a neighbour counts as off the point's own sheet (noise sigmas),
-// and the probe offsets (point spacings) of the decided patches' winding number that must agree.
+// Thin-wall sides: the neighbours searched for the other side of the wall, the offsets along the
+// normal beyond which a neighbour counts as off the point's own sheet (noise sigmas), and the
+// probe offsets (point spacings) of the decided patches' winding number that must agree.
 constexpr int kSideNeighbours = 32;
 constexpr double kSideSigmas = 4;
 constexpr double kSideProbes[] = {0.25, 0.5, 1.0};
+// A wall, not a narrow gap: among the kWallNeighbours nearest points, pairs with antiparallel
+// normals (within 30 degrees) each more than kWallSpacings point spacings behind the other
+// outnumber the pairs each in front of the other (a gap's facing sides, or a slot's).
+constexpr int kWallNeighbours = 16;
+constexpr double kWallSpacings = 0.5;
 
 int find(std::vector<int>& parent, int i) {
   while (parent[size_t(i)] != i)
@@ -170,12 +176,36 @@ double outside_winding(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
   return e / double(std::max<Index>(m, 1));
 }
 
+// Whether point i lies on a wall rather than by a narrow gap (kWallNeighbours): the two have the
+// same unoriented geometry, a sheet close behind or in front, so the test reads the neighbours'
+// current orientation, which is right for most of them (back to back: a wall's two sides).
+bool on_a_wall(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+               const detail::NeighbourIndex& index, Index i, double spacing) {
+  std::vector<int> q;
+  std::vector<double> q2;
+  index.knn(P.row(i).transpose(), kWallNeighbours + 1, q, q2);
+  const double tau = kWallSpacings * spacing;
+  int back = 0, facing = 0;
+  for (size_t a = 0; a < q.size(); ++a)
+    for (size_t b = a + 1; b < q.size(); ++b) {
+      if (N.row(q[a]).dot(N.row(q[b])) >= -kPatchCos)
+        continue;
+      const Eigen::RowVector3d e = P.row(q[b]) - P.row(q[a]);
+      const double ha = e.dot(N.row(q[a])), hb = -e.dot(N.row(q[b])); // each one's offset
+      back += ha < -tau && hb < -tau;
+      facing += ha > tau && hb > tau;
+    }
+  return back > facing;
+}
+
 // Each point outside the decided patches (which[i] == R: a rim or a thin wall's edge) is turned
-// when two tests say its normal points into the wall: (1) its kSideNeighbours nearest points
+// when three tests say its normal points into a wall: (1) its kSideNeighbours nearest points
 // that lie within 45 degrees of its normal line and farther than kSideSigmas noise sigmas along
 // it (the other side of a thin wall, or the body's own curvature) lie in front of it on the
 // whole (sum of their offsets along n positive); (2) the decided patches' winding number is
-// larger in front of it than behind it (sum over the kSideProbes offsets).
+// larger in front of it than behind it (sum over the kSideProbes offsets); (3) on_a_wall, read
+// from the normals before any of these turns (a concave edge's or slot's far side also lies in
+// front, and (2) is weak there).
 void orient_thin_wall_sides(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N,
                             const detail::NeighbourIndex& index, const Eigen::VectorXd& area,
                             const std::vector<int>& which, int R, double sigma) {
@@ -193,6 +223,7 @@ void orient_thin_wall_sides(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N,
       contrast += w(p - f * std::sqrt(area(i)) * n) - w(p + f * std::sqrt(area(i)) * n);
     return contrast < 0;
   };
+  const Eigen::MatrixX3d N_in = N;
   std::vector<int> idx;
   std::vector<double> d2;
   for (Index i = 0; i < P.rows(); ++i) {
@@ -202,13 +233,57 @@ void orient_thin_wall_sides(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N,
     double ahead = 0; // sum of the off-sheet neighbours' offsets along n
     for (int j : idx) {
       const Eigen::RowVector3d e = P.row(j) - P.row(i);
-      const double h = e.dot(N.row(i));
-      if (std::abs(h) > kSideSigmas * sigma && (e - h * N.row(i)).norm() <= std::abs(h))
+      const double h = e.dot(N_in.row(i));
+      if (std::abs(h) > kSideSigmas * sigma && (e - h * N_in.row(i)).norm() <= std::abs(h))
         ahead += h;
     }
-    if (ahead > 0 && winding_says_inward(i))
+    if (ahead > 0 && winding_says_inward(i) && on_a_wall(P, N_in, index, i, std::sqrt(area(i))))
       N.row(i) *= -1;
   }
+}
+
+// The decided patches take their signs s; the other points take the sign change of the nearest
+// decided point along the neighbour graph (breadth first): the propagated orientation was right
+// locally, wrong by whole patches.
+void propagate_sign_changes(Eigen::MatrixX3d& N, const Eigen::MatrixXi& K,
+                            const std::vector<int>& which, int R, const std::vector<int>& s) {
+  const Index n = N.rows();
+  std::vector<int> change(size_t(n), 0);
+  std::vector<Index> queue;
+  for (Index i = 0; i < n; ++i)
+    if (which[size_t(i)] < R) {
+      change[size_t(i)] = s[size_t(which[size_t(i)])];
+      queue.push_back(i);
+    }
+  for (size_t head = 0; head < queue.size(); ++head)
+    for (Index c = 0; c < K.cols(); ++c) {
+      const Index j = K(queue[head], c);
+      if (change[size_t(j)] == 0) {
+        change[size_t(j)] = change[size_t(queue[head])];
+        queue.push_back(j);
+      }
+    }
+  for (Index i = 0; i < n; ++i)
+    if (change[size_t(i)] < 0)
+      N.row(i) *= -1;
+}
+
+// The decided patches take their signs s; the other points (rims, thin walls' edges) are
+// oriented again from all of them at once by Hoppe's propagation (orientation_tree.h), so that a
+// point by a thin wall's edge follows its own side's patch along the sheet, not the sign change
+// of a patch across the wall, and any sign the first propagation got wrong there is dropped.
+void orient_from_patches(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, const Eigen::MatrixXi& K,
+                         const std::vector<int>& which, int R, const std::vector<int>& s) {
+  std::vector<int> seeds;
+  std::vector<char> done(size_t(P.rows()), 0);
+  for (Index i = 0; i < P.rows(); ++i)
+    if (which[size_t(i)] < R) {
+      if (s[size_t(which[size_t(i)])] < 0)
+        N.row(i) *= -1;
+      seeds.push_back(int(i));
+      done[size_t(i)] = 1;
+    }
+  detail::grow_orientation(P, N, detail::neighbour_graph(K), seeds, done);
 }
 
 } // namespace
@@ -257,26 +332,10 @@ Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, i
     }
   }
   const std::vector<int> s = choose_signs(probe_patch, at_plus, at_minus);
-  // the rest take the sign change of the nearest decided point along the neighbour graph
-  // (breadth first): the propagated orientation was right locally, wrong by whole patches
-  std::vector<int> change(size_t(n), 0);
-  std::vector<Index> queue;
-  for (Index i = 0; i < n; ++i)
-    if (which[size_t(i)] < R) {
-      change[size_t(i)] = s[size_t(which[size_t(i)])];
-      queue.push_back(i);
-    }
-  for (size_t head = 0; head < queue.size(); ++head)
-    for (Index c = 0; c < K.cols(); ++c) {
-      const Index j = K(queue[head], c);
-      if (change[size_t(j)] == 0) {
-        change[size_t(j)] = change[size_t(queue[head])];
-        queue.push_back(j);
-      }
-    }
-  for (Index i = 0; i < n; ++i)
-    if (change[size_t(i)] < 0)
-      N.row(i) *= -1;
+  if (thin_walls)
+    orient_from_patches(P, N, K, which, R, s);
+  else
+    propagate_sign_changes(N, K, which, R, s);
   // the global sign: outward normals enclose a positive volume (divergence theorem)
   const Eigen::RowVector3d c = P.colwise().mean();
   const double volume = ((P.rowwise() - c).array() * N.array()).rowwise().sum().matrix().dot(area);

@@ -2,7 +2,9 @@
 #include "interlin/reconstruction/clouds/orient_normals.h"
 
 #include "nearest_neighbours.h"
+#include "orientation_tree.h"
 
+#include <algorithm>
 #include <cmath>
 #include <queue>
 #include <vector>
@@ -20,24 +22,6 @@ double edge_cost(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N, Index i, 
   const double off =
       len > 0 ? 0.5 * (std::abs(N.row(i).dot(d)) + std::abs(N.row(j).dot(d))) / len : 0.0;
   return 1 - std::abs(N.row(i).dot(N.row(j))) + off;
-}
-
-// Symmetric neighbour lists from the k-nearest-neighbour table.
-std::vector<std::vector<int>> neighbour_graph(const Eigen::MatrixXi& K) {
-  std::vector<std::vector<int>> g(static_cast<size_t>(K.rows()));
-  for (Index i = 0; i < K.rows(); ++i)
-    for (Index c = 0; c < K.cols(); ++c) {
-      const int j = K(i, c);
-      if (j == i)
-        continue;
-      g[static_cast<size_t>(i)].push_back(j);
-      g[static_cast<size_t>(j)].push_back(static_cast<int>(i));
-    }
-  for (auto& l : g) {
-    std::sort(l.begin(), l.end());
-    l.erase(std::unique(l.begin(), l.end()), l.end());
-  }
-  return g;
 }
 
 // The points reachable from `start` (breadth first).
@@ -83,6 +67,55 @@ int root_of(const std::vector<int>& c, const Eigen::MatrixX3d& P, Eigen::MatrixX
 
 } // namespace
 
+namespace detail {
+
+std::vector<std::vector<int>> neighbour_graph(const Eigen::MatrixXi& K) {
+  std::vector<std::vector<int>> g(static_cast<size_t>(K.rows()));
+  for (Index i = 0; i < K.rows(); ++i)
+    for (Index c = 0; c < K.cols(); ++c) {
+      const int j = K(i, c);
+      if (j == i)
+        continue;
+      g[static_cast<size_t>(i)].push_back(j);
+      g[static_cast<size_t>(j)].push_back(static_cast<int>(i));
+    }
+  for (auto& l : g) {
+    std::sort(l.begin(), l.end());
+    l.erase(std::unique(l.begin(), l.end()), l.end());
+  }
+  return g;
+}
+
+Index grow_orientation(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N,
+                       const std::vector<std::vector<int>>& g, const std::vector<int>& seeds,
+                       std::vector<char>& done) {
+  using Edge = std::pair<double, std::pair<int, int>>; // cost, (from, to)
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<>> heap;
+  auto push_edges = [&](int from) {
+    for (int j : g[static_cast<size_t>(from)])
+      if (!done[static_cast<size_t>(j)])
+        heap.push({edge_cost(P, N, from, j), {from, j}});
+  };
+  for (int s : seeds)
+    push_edges(s);
+  Index flipped = 0;
+  while (!heap.empty()) {
+    const auto [from, to] = heap.top().second;
+    heap.pop();
+    if (done[static_cast<size_t>(to)])
+      continue;
+    done[static_cast<size_t>(to)] = 1;
+    if (N.row(from).dot(N.row(to)) < 0) {
+      N.row(to) *= -1;
+      ++flipped;
+    }
+    push_edges(to);
+  }
+  return flipped;
+}
+
+} // namespace detail
+
 void orient_normals(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k, OrientationInfo* info) {
   OrientationInfo out;
   const Index n = P.rows();
@@ -92,31 +125,16 @@ void orient_normals(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k, Orien
     return;
   }
   const detail::NeighbourIndex index(P);
-  const std::vector<std::vector<int>> g = neighbour_graph(index.knn_all(k));
+  const std::vector<std::vector<int>> g = detail::neighbour_graph(index.knn_all(k));
   std::vector<char> seen(static_cast<size_t>(n), 0), done(static_cast<size_t>(n), 0);
-  using Edge = std::pair<double, std::pair<int, int>>; // cost, (from, to)
   for (Index s = 0; s < n; ++s) {
     if (seen[static_cast<size_t>(s)])
       continue;
     const std::vector<int> c = component(g, static_cast<int>(s), seen);
     ++out.components;
-    // Prim's algorithm from the root; each node takes the sign that agrees with its tree parent.
-    std::priority_queue<Edge, std::vector<Edge>, std::greater<>> heap;
-    heap.push({0.0, {-1, root_of(c, P, N, out.flipped)}});
-    while (!heap.empty()) {
-      const auto [from, to] = heap.top().second;
-      heap.pop();
-      if (done[static_cast<size_t>(to)])
-        continue;
-      done[static_cast<size_t>(to)] = 1;
-      if (from >= 0 && N.row(from).dot(N.row(to)) < 0) {
-        N.row(to) *= -1;
-        ++out.flipped;
-      }
-      for (int j : g[static_cast<size_t>(to)])
-        if (!done[static_cast<size_t>(j)])
-          heap.push({edge_cost(P, N, to, j), {to, j}});
-    }
+    const int root = root_of(c, P, N, out.flipped);
+    done[static_cast<size_t>(root)] = 1;
+    out.flipped += detail::grow_orientation(P, N, g, {root}, done);
   }
   if (info)
     *info = out;

@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 
 using namespace interlin;
@@ -180,7 +181,9 @@ TEST_CASE("orientation by the winding number: flipped sides of thin walls are tu
   // right orientation stays right; a wrong one keeps at most 40 % of its wrong signs (measured at
   // most 35 %: the patches by the sharp rim and the grid cells' faces are decided less surely).
   // Walls of about 1.5 spacings (thickness 0.04) are not repaired: there the two sides join one
-  // patch.
+  // patch. These bounds are the patch repair's (thin_walls off); with thin_walls a right
+  // orientation keeps at least 99 % right (measured: 0 and 32 of 6000 turned wrong, on the 0.1
+  // thick one's sharp rim).
   constexpr double kKeptShare = 0.4, kSigma = 0.002;
   for (const double c : {0.15, 0.05})
     for (const int flip : {0, 1, 2}) { // none, the lower side, all
@@ -194,7 +197,13 @@ TEST_CASE("orientation by the winding number: flipped sides of thin walls are tu
           N.row(i) *= -1;
       }
       const long before = wrong_signs(N, cloud.normals);
-      const Eigen::Index negated = orient_by_winding_number(cloud.points, N, 10);
+      if (flip == 0) {
+        Eigen::MatrixX3d thin = N;
+        orient_by_winding_number(cloud.points, thin, 10, true);
+        INFO("thickness " << 2 * c << ", thin_walls: wrong " << wrong_signs(thin, cloud.normals));
+        CHECK(wrong_signs(thin, cloud.normals) <= 60);
+      }
+      const Eigen::Index negated = orient_by_winding_number(cloud.points, N, 10, false);
       const long after = wrong_signs(N, cloud.normals);
       INFO("thickness " << 2 * c << " flip " << flip << ": wrong before " << before << ", after "
                         << after << ", negated " << negated);
@@ -210,7 +219,11 @@ TEST_CASE("orientation by the winding number: flipped sides of thin walls are tu
         if (N.row(i).dot(cloud.normals.row(i)) < 0)
           N.row(i) *= -1;
       INFO(n << " points");
-      CHECK(orient_by_winding_number(cloud.points, N, 10) == 0);
+      for (const bool thin : {false, true}) {
+        Eigen::MatrixX3d M = N;
+        INFO("thin_walls " << thin);
+        CHECK(orient_by_winding_number(cloud.points, M, 10, thin) == 0);
+      }
     }
 }
 
@@ -238,9 +251,10 @@ TEST_CASE("orientation at thin walls' edges: the thin-wall sides turn inward nor
   // prepare_cloud's steps (PCL normals, propagation, the winding-number repair) on ellipsoids
   // 0.08-0.12 thick in the middle (3-5 point spacings of 0.025), rims as sharp as a blade's
   // edge, noise 0.001 and 0.003. Without thin_walls 93-858 of the 6000 normals point inward
-  // (measured; the family's total 2874); with it 78-758 (total 2207, 23 % fewer, every case
-  // fewer). Bounds: the family's total falls by at least 15 %; no case gains more than 5 (ties
-  // within the platforms' rounding).
+  // (measured; the family's total 2874); with it 89-697 (total 1857, 35 % fewer, every case
+  // fewer; session 8's rule without the re-propagation and the wall test: 2207). Bounds: the
+  // family's total falls by at least 25 %; no case gains more than 5 (ties within the
+  // platforms' rounding).
   long total[2] = {0, 0};
   for (const double c : {0.04, 0.05, 0.06})
     for (const double sigma : {0.001, 0.003}) {
@@ -260,5 +274,83 @@ TEST_CASE("orientation at thin walls' edges: the thin-wall sides turn inward nor
     }
   INFO("inward over the family " << total[0] << " -> " << total[1]);
   CHECK(total[0] > 6 * 6000 / 100); // the old orientation measurably fails (> 1 %)
-  CHECK(double(total[1]) <= 0.85 * double(total[0]));
+  CHECK(double(total[1]) <= 0.75 * double(total[0]));
+}
+
+namespace {
+
+// n points uniform by area on the boundary of the prism over a simple polygon (counter-clockwise
+// in the x y plane, z in [0, h]) whose caps are the union of the given axis-aligned rectangles
+// (x0, y0, x1, y1); exact outward normals, Gaussian noise sigma on each coordinate.
+PointCloud sample_prism(const std::vector<Eigen::Vector2d>& polygon,
+                        const std::vector<Eigen::Vector4d>& rects, double h, int n, double sigma,
+                        unsigned seed) {
+  struct Face {
+    Eigen::Vector3d o, u, v, n;
+  };
+  std::vector<Face> faces;
+  const Eigen::Vector3d Z = Eigen::Vector3d::UnitZ();
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Eigen::Vector2d a = polygon[k], d = polygon[(k + 1) % polygon.size()] - a;
+    faces.push_back({Eigen::Vector3d(a(0), a(1), 0), Eigen::Vector3d(d(0), d(1), 0), h * Z,
+                     Eigen::Vector3d(d(1), -d(0), 0).normalized()});
+  }
+  for (const Eigen::Vector4d& r : rects)
+    for (const double z : {0.0, h})
+      faces.push_back({Eigen::Vector3d(r(0), r(1), z), Eigen::Vector3d(r(2) - r(0), 0, 0),
+                       Eigen::Vector3d(0, r(3) - r(1), 0), z > 0 ? Z : Eigen::Vector3d(-Z)});
+  std::vector<double> cum;
+  double total = 0;
+  for (const Face& f : faces)
+    cum.push_back(total += f.u.norm() * f.v.norm());
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  std::normal_distribution<double> G(0, sigma);
+  PointCloud c;
+  c.points.resize(n, 3);
+  c.normals.resize(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const Face& f =
+        faces[size_t(std::lower_bound(cum.begin(), cum.end(), U(rng) * total) - cum.begin())];
+    const Eigen::Vector3d p = f.o + U(rng) * f.u + U(rng) * f.v;
+    c.points.row(i) = (p + Eigen::Vector3d(G(rng), G(rng), G(rng))).transpose();
+    c.normals.row(i) = f.n.transpose();
+  }
+  return c;
+}
+
+} // namespace
+
+TEST_CASE("orientation at concave edges and narrow slots: the thin-wall sides add no inward "
+          "normals there",
+          "[clouds][normals]") {
+  // A block 2 x 1 x 0.5 with a slot of width w cut from its face y = 1 down to y = 0.4, through
+  // its height: the slot's walls face each other w apart (w = 0.06: about 2 point spacings), and
+  // meet its floor at concave edges; to the thin-wall test's local geometry a narrow slot is a
+  // thin wall seen from inside (R-function models' slots and gaps: docs/benchmarks.md "Thin walls
+  // by default"). PCL normals, propagation, the winding-number repair, without and with
+  // thin_walls. Measured: by the slot 0-35 inward without, the same +0 or +1 with (session 8's
+  // rule without the wall test: 35 -> 92 and 32 -> 97 at w = 0.06). Bounds: at most 3 more by
+  // the slot and in the whole cloud (ties within the platforms' rounding).
+  for (const double w : {0.15, 0.1, 0.06})
+    for (const double sigma : {0.001, 0.003}) {
+      const double h = 0.5, a = 1 - w / 2, b = 1 + w / 2, y0 = 0.4;
+      const PointCloud cloud =
+          sample_prism({{0, 0}, {2, 0}, {2, 1}, {b, 1}, {b, y0}, {a, y0}, {a, 1}, {0, 1}},
+                       {{0, 0, 2, y0}, {0, y0, a, 1}, {b, y0, 2, 1}}, h, 6000, sigma, 31);
+      long wrong[2] = {0, 0}, at_slot[2] = {0, 0};
+      for (const bool thin : {false, true}) {
+        Eigen::MatrixX3d N = estimate_normals(cloud.points, 16);
+        orient_normals(cloud.points, N, 10);
+        orient_by_winding_number(cloud.points, N, 10, thin);
+        wrong[thin] = wrong_signs(N, cloud.normals);
+        for (Eigen::Index i = 0; i < N.rows(); ++i)
+          at_slot[thin] += std::abs(cloud.points(i, 0) - 1) < w / 2 + 0.1 &&
+                           cloud.points(i, 1) > y0 - 0.1 && N.row(i).dot(cloud.normals.row(i)) < 0;
+      }
+      INFO("slot " << w << " sigma " << sigma << ": inward " << wrong[0] << " -> " << wrong[1]
+                   << ", by the slot " << at_slot[0] << " -> " << at_slot[1]);
+      CHECK(at_slot[1] <= at_slot[0] + 3);
+      CHECK(wrong[1] <= wrong[0] + 3);
+    }
 }

@@ -38,18 +38,22 @@ void orient_normals(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
 // nearest decided point along the neighbour graph; the global sign makes the enclosed volume
 // (divergence theorem) positive. The result is kept only if its mean min(|w|, 1) at 4000 such
 // outside probes of the whole cloud is lower than the input's (never worse by that measure).
-// thin_walls (opt-in, off by default): after that check (whether the repair was kept or not),
-// each point that joins no decided patch (rims, thin walls' edges) is also turned when (1) its 32
-// nearest points within 45 degrees of its normal line and more than 4 noise sigmas along it lie in
-// front of it on the whole (the other side of a thin wall is behind a point) and (2) the decided
-// patches' winding number is larger in front of it than behind it (probes at 0.25, 0.5, 1 point
-// spacings). On the Rotor 37 blade scans this lowers the Chamfer 25-37 %, but it raises it on
-// R-function model clouds (uav +15 %, car +8 %, valve +5 %): docs/benchmarks.md "Thin-wall
-// sides".
+// thin_walls (prepare_cloud's default): the points outside the decided patches (rims, thin
+// walls' edges, sharp edges) are instead oriented again from all decided patches at once by
+// Hoppe's propagation (the minimum spanning tree grown from every decided point), so each
+// follows its own side's patch along the sheet. Then, after the check (whether the repair was
+// kept or not), each such point is also turned when (1) its 32 nearest points within 45 degrees
+// of its normal line and more than 4 noise sigmas along it lie in front of it on the whole (the
+// other side of a thin wall is behind a point), (2) the decided patches' winding number is larger
+// in front of it than behind it (probes at 0.25, 0.5, 1 point spacings), and (3) it lies on a
+// wall, not by a narrow gap or slot, whose facing sides look the same to (1): among its 16
+// nearest points, pairs with antiparallel normals each more than half a point spacing behind
+// the other outnumber the pairs each in front of the other. docs/benchmarks.md "Thin-wall
+// sides" and "Thin walls by default".
 // Inputs:  P #P by 3, N #P by 3 unit normals oriented by orient_normals, k neighbours (>= 8 used)
 // Outputs: N with the chosen normals negated; returns how many normals were negated.
 Eigen::Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
-                                      bool thin_walls = false);
+                                      bool thin_walls = true);
 
 // The fraction of k-nearest-neighbour pairs lying on one sheet (edge within 30 degrees of both
 // tangent planes) whose normals point to opposite sides (n_i . n_j < 0): about 0 for

@@ -24,7 +24,7 @@ struct CloudPrepOptions {
   NormalSource normals = NormalSource::automatic;
   int normal_neighbours = 16; // PCL normal estimation: k nearest neighbours
   int orient_neighbours = 10; // orientation graph: k nearest neighbours
-  bool thin_walls = false;    // orient_by_winding_number's thin-wall sides (opt-in)
+  bool thin_walls = true;     // orient_by_winding_number: thin walls and edges (false: as before)
   int threads = 0;
   std::function<void(const std::string&)> progress; // one line per step
 };
