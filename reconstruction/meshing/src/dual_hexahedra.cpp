@@ -187,6 +187,44 @@ void restore_held(const Eigen::MatrixXd& centre, const Eigen::MatrixXd& target,
     }
 }
 
+// The points still held after restore_held, each projected onto F = 0 from where it stands
+// (along -grad F in one batch, within a cell; the restore only moves along the line from the
+// cell's centre to its target, the point's own nearest surface point may shape its elements
+// better), kept in point order where every element around it stays at kMinScaledJacobian.
+void project_held(const ImplicitFunction& f, double h, const Eigen::MatrixXi& C,
+                  const Eigen::MatrixXi& corners, const std::vector<char>& missed,
+                  Eigen::MatrixXd& V, std::vector<double>& s, int threads) {
+  std::vector<long> rows;
+  for (size_t v = 0; v < s.size(); ++v)
+    if (s[v] < 1 && !missed[v])
+      rows.push_back(long(v));
+  if (rows.empty())
+    return;
+  Eigen::MatrixXd P(long(rows.size()), 3);
+  for (size_t k = 0; k < rows.size(); ++k)
+    P.row(long(k)) = V.row(rows[k]);
+  const Eigen::MatrixXd before = P, D = outward_directions(f, P, 1e-3 * h);
+  RootOptions ro;
+  ro.threads = threads;
+  std::vector<char> ok;
+  project_along(f, P, D, Eigen::VectorXd::Constant(P.rows(), 0.25 * h), ro, &ok, 4, 1);
+  const detail::NodeElements ne(C, V.rows());
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const long v = rows[k];
+    if (!ok[k] || (P.row(long(k)) - before.row(long(k))).norm() > h)
+      continue;
+    const Eigen::RowVector3d keep = V.row(v);
+    V.row(v) = P.row(long(k));
+    bool good = true;
+    for (long j = ne.start[size_t(v)]; j < ne.start[size_t(v) + 1] && good; ++j)
+      good = min_corner_jacobian(V, C, ne.at[size_t(j)], corners) >= kMinScaledJacobian;
+    if (good)
+      s[size_t(v)] = 1;
+    else
+      V.row(v) = keep;
+  }
+}
+
 } // namespace
 
 DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
@@ -226,6 +264,7 @@ DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
       break;
   }
   restore_held(centre, target, out.C, corners, out.V, s);
+  project_held(f, g.spacing.minCoeff(), out.C, corners, missed, out.V, s, threads);
   out.held.assign(out.boundary.size(), 0);
   for (size_t v = 0; v < s.size(); ++v) {
     out.held[v] = missed[v] || s[v] < 1;

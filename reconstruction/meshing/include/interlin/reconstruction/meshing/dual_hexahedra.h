@@ -33,10 +33,12 @@ struct DualHexahedra {
 // over the edge lengths) is below 0.2, its boundary points go halfway back towards their cells'
 // centres (after 10 rounds all the way: the centres make the grid's dual cubes, so the loop ends
 // with every corner at 0.2 or better); (5) each held point in turn (3 sweeps) goes back towards
-// F = 0 as far as (1, 3/4, 1/2, 1/4 of the way) keeps the elements around it at 0.2. Without a
-// buffer layer (pillowing) a hexahedron at an oblique surface has several corners on F = 0 and
-// needs holding: 11-18 % of the boundary points end short of F = 0 on the benchmark models
-// (36-52 % without step 5; VolumeMeshInfo::held; docs/benchmarks.md).
+// F = 0 as far as (1, 3/4, 1/2, 1/4 of the way) keeps the elements around it at 0.2; (6) each
+// point still held is projected onto F = 0 from where it stands (along -grad F, within a cell)
+// and kept there when the elements around it stay at 0.2. Without a buffer layer (pillowing) a
+// hexahedron at an oblique surface has several corners on F = 0 and needs holding: 10-17 % of
+// the boundary points end short of F = 0 on the benchmark models (36-52 % without step 5, 11-18 %
+// without step 6; VolumeMeshInfo::held; docs/benchmarks.md).
 // Inputs:  f (value; gradient when available), g, S #g nodes (sample_grid), epsilon >= 0,
 //          threads (0: all cores)
 // Output:  the mesh; its boundary facets are boundary_facets(C)
