@@ -299,8 +299,9 @@ watertight.)");
       },
       py::arg("f"), py::arg("V"), py::arg("F"), py::arg("iterations") = 4, py::arg("kappa") = 0.001,
       py::arg("laplacian") = true, py::arg("threads") = 0,
-      R"(Seed 003's smoothing: vertices slide over F = 0 onto creases -> (V (N, 3), fit) with fit
-the sum of squared centroid offsets before the first and after each sweep.)");
+      R"(Seed 003's smoothing: vertices slide over F = 0 onto creases (no descent move takes a face
+below 5 degrees) -> (V (N, 3), fit) with fit the sum of squared centroid offsets before the first
+and after each sweep.)");
   m.def("triangulate_loop", &triangulate_loop, py::arg("P"),
         "Triangles (P - 2, 3) filling the closed loop P (P, 3): constrained Delaunay in its "
         "best-fit plane.");

@@ -3,6 +3,8 @@
 
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 
+#include "min_angle.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -60,11 +62,33 @@ std::pair<int, int> others(const Eigen::MatrixXi& F, int q, int v) {
   return {F(q, (j + 1) % 3), F(q, (j + 2) % 3)};
 }
 
+// Whether vertex v may move to x: no face at v turns over, no face at or above `angle_floor`
+// (radians) falls below it, and the star's smallest angle, if below the floor, does not shrink.
+// So the faces below the floor never grow in number and the smallest angle never falls, while
+// the vertices of existing slivers stay free to move.
+bool star_stays_sound(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Topology& t, int v,
+                      const Eigen::RowVector3d& x, double angle_floor) {
+  double min_now = M_PI, min_then = M_PI;
+  for (int q : t.faces[size_t(v)]) {
+    const auto [b, c] = others(F, q, v);
+    const Eigen::RowVector3d pv = V.row(v), pb = V.row(b), pc = V.row(c);
+    if (normal(pv, pb, pc).dot(normal(x, pb, pc)) <= 0)
+      return false;
+    const double now = detail::min_angle(pv.transpose(), pb.transpose(), pc.transpose());
+    const double then = detail::min_angle(x.transpose(), pb.transpose(), pc.transpose());
+    if (now >= angle_floor && then < angle_floor)
+      return false;
+    min_now = std::min(min_now, now);
+    min_then = std::min(min_then, then);
+  }
+  return min_then >= std::min(min_now, angle_floor);
+}
+
 // E_v(X) for every (v, X) of the batch (functional (12)); +inf when a centroid does not project
-// or a face would turn over.
+// or the star would not stay sound (star_stays_sound with `angle_floor`).
 Eigen::VectorXd energies(const ImplicitFunction& f, const Eigen::MatrixXd& V,
                          const Eigen::MatrixXi& F, const Topology& t, const std::vector<int>& who,
-                         const Eigen::MatrixXd& X, double kappa, int threads) {
+                         const Eigen::MatrixXd& X, double kappa, double angle_floor, int threads) {
   const long n = long(who.size());
   long m = 0;
   for (int v : who)
@@ -75,11 +99,11 @@ Eigen::VectorXd energies(const ImplicitFunction& f, const Eigen::MatrixXd& V,
   for (long r = 0, row = 0; r < n; ++r) {
     const int v = who[size_t(r)];
     const Eigen::RowVector3d x = X.row(r);
+    if (!star_stays_sound(V, F, t, v, x, angle_floor))
+      E(r) = kInf;
     for (int q : t.faces[size_t(v)]) {
       const auto [b, c] = others(F, q, v);
       const Eigen::RowVector3d pb = V.row(b), pc = V.row(c);
-      if (normal(V.row(v), pb, pc).dot(normal(x, pb, pc)) <= 0)
-        E(r) = kInf;
       E(r) += kappa * ((pb - x).squaredNorm() + (pc - x).squaredNorm());
       C.row(row) = (x + pb + pc) / 3;
       h(row) = std::max(0.25 * std::min((pb - x).norm(), (pc - x).norm()), 1e-300);
@@ -132,6 +156,7 @@ SurfaceSmoothingReport smooth_on_surface(const ImplicitFunction& f, Eigen::Matri
         throw std::invalid_argument("smooth_on_surface: face " + std::to_string(q) +
                                     " has an index out of range");
   const Topology t = topology(nv, F);
+  const double angle_floor = o.min_angle_deg * M_PI / 180;
   // Greedy colouring: a colour class holds no two adjacent vertices.
   std::vector<int> colour(size_t(nv), -1);
   int colours = 0;
@@ -175,20 +200,12 @@ SurfaceSmoothingReport smooth_on_surface(const ImplicitFunction& f, Eigen::Matri
       }
       std::vector<char> ok;
       walk(f, P, h, o.threads, ok);
-      // Keep a vertex where it was if its projection failed or would turn a face over.
-      for (long v = 0; v < nv; ++v) {
-        if (!ok[size_t(v)])
-          continue;
-        bool flips = false;
-        for (int q : t.faces[size_t(v)]) {
-          const auto [b, c] = others(F, q, int(v));
-          flips =
-              flips ||
-              normal(V.row(v), V.row(b), V.row(c)).dot(normal(P.row(v), V.row(b), V.row(c))) <= 0;
-        }
-        if (!flips)
+      // Keep a vertex where it was if its projection failed or a face would turn over. No angle
+      // floor here: the pass moves all vertices at once, and judged against half-moved
+      // neighbours the floor froze the slivers' vertices (body (11) at 20 cells: fit 2x).
+      for (long v = 0; v < nv; ++v)
+        if (ok[size_t(v)] && star_stays_sound(V, F, t, int(v), P.row(v), 0.0))
           V.row(v) = P.row(v);
-      }
     }
     for (const std::vector<int>& cls : classes) {
       const long n = long(cls.size());
@@ -208,7 +225,7 @@ SurfaceSmoothingReport smooth_on_surface(const ImplicitFunction& f, Eigen::Matri
       Eigen::MatrixXd X(n, 3);
       for (long r = 0; r < n; ++r)
         X.row(r) = V.row(cls[size_t(r)]);
-      Eigen::VectorXd E = energies(f, V, F, t, cls, X, o.kappa, o.threads);
+      Eigen::VectorXd E = energies(f, V, F, t, cls, X, o.kappa, angle_floor, o.threads);
       std::vector<size_t> target(size_t(n), 0);
       std::vector<double> step(size_t(n), 0.1);
       std::vector<int> tries(size_t(n), 0);
@@ -242,7 +259,7 @@ SurfaceSmoothingReport smooth_on_surface(const ImplicitFunction& f, Eigen::Matri
         }
         std::vector<char> ok;
         walk(f, T, h, o.threads, ok);
-        const Eigen::VectorXd Et = energies(f, V, F, t, who, T, o.kappa, o.threads);
+        const Eigen::VectorXd Et = energies(f, V, F, t, who, T, o.kappa, angle_floor, o.threads);
         for (long a = 0; a < m; ++a) {
           const long r = row[size_t(a)];
           ++tries[size_t(r)];
