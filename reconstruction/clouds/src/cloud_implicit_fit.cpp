@@ -267,6 +267,33 @@ bool check_sign(const Points& pts, const detail::NeighbourIndex& index, LocalFit
   return true;
 }
 
+// What decides a cell: the points per fit and the acceptance thresholds (kAcceptRms sigma,
+// kAcceptMax sigma, both times `acceptance`).
+struct Rule {
+  int min_points = 20;
+  double sigma = 0, acceptance = 1;
+};
+
+// Noise-aware neighbourhood (CloudFitOptions::noise_aware): a local fit's offset error from k
+// points with noise sigma is at least 0.8 sigma / sqrt(k) (Cramer-Rao for a plane's offset, mean
+// absolute value), so an error e = 0.037 spacing needs k = (0.8 / 0.037)^2 rho^2 = 460 rho^2.
+constexpr double kCramerRaoPoints = 460;
+// acceptance_per_rho: larger thresholds let the octree stop at cells with more points; beyond 2
+// they accept the misfit of wrong normals at thin edges (docs/benchmarks.md, session 9).
+constexpr double kAcceptanceCap = 2;
+
+Rule fit_rule(const CloudFitOptions& o, double sigma, double rho, Eigen::Index points) {
+  Rule r;
+  r.sigma = sigma;
+  r.min_points = o.min_points;
+  if (o.noise_aware) {
+    const double k = std::ceil(kCramerRaoPoints * rho * rho);
+    r.min_points = static_cast<int>(std::min<double>(std::max<double>(o.min_points, k), points));
+  }
+  r.acceptance = std::min(kAcceptanceCap, 1 + o.acceptance_per_rho * rho);
+  return r;
+}
+
 struct Cell {
   int level = 0;
   Eigen::Array3i ijk = Eigen::Array3i::Zero();
@@ -277,7 +304,7 @@ struct Cell {
 
 // Fits cell c; decides whether it is split.
 void process(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
-             const CloudFitOptions& o, const Vector3d& origin, double root, double sigma) {
+             const CloudFitOptions& o, const Vector3d& origin, double root, const Rule& rule) {
   const double side = root / double(1 << c.level);
   LocalFit& f = c.fit;
   f.level = c.level;
@@ -288,21 +315,29 @@ void process(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
   std::vector<int> idx;
   std::vector<double> d2;
   index.radius(f.centre, R, idx, d2);
-  if (int(idx.size()) < o.min_points) {
-    c.far = fit_sparse(pts, index, o.min_points, f);
+  if (int(idx.size()) < rule.min_points) {
+    c.far = fit_sparse(pts, index, rule.min_points, f);
     return;
   }
   const bool ok = fit_cell(pts, idx, weights(d2, R), R, f);
   double rms = 0, mx = 0;
   if (ok)
     misfit(f, pts, idx, rms, mx);
+  const double sigma = rule.acceptance * rule.sigma;
   const bool accepted = ok && rms <= kAcceptRms * sigma && mx <= kAcceptMax * sigma;
   // A ball of half the radius holds about a quarter of a surface's points: children get
   // min_points each only when the cell has kSplitShare times as many.
   constexpr int kSplitShare = 4;
-  c.split = !accepted && c.level < o.max_depth && int(idx.size()) >= kSplitShare * o.min_points;
+  c.split = !accepted && c.level < o.max_depth && int(idx.size()) >= kSplitShare * rule.min_points;
   if (!ok && !c.split) // no usable fit and no refinement left: the nearest points' fit
-    c.far = fit_sparse(pts, index, o.min_points, f);
+    c.far = fit_sparse(pts, index, rule.min_points, f);
+}
+
+// The median of sqrt(area per point): the point spacing.
+double median_spacing(const Eigen::VectorXd& area) {
+  std::vector<double> a(area.data(), area.data() + area.size());
+  std::nth_element(a.begin(), a.begin() + std::ptrdiff_t(a.size() / 2), a.end());
+  return std::sqrt(a[a.size() / 2]);
 }
 
 // Z-order (Morton) key of a leaf's cell at the resolution of level `depth` (<= 21): leaves sorted
@@ -325,7 +360,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   if (!c.has_normals())
     throw std::invalid_argument("cloud implicit: the cloud needs oriented normals");
   if (o.min_points < 3 || o.max_depth < 1 || o.max_depth > 20 || !(o.support > 0.5) ||
-      !(o.fit_ball > 0) || !(o.noise >= 0))
+      !(o.fit_ball > 0) || !(o.noise >= 0) || !(o.acceptance_per_rho >= 0))
     throw std::invalid_argument("cloud implicit: bad options");
   if (c.points.rows() < o.min_points)
     throw std::invalid_argument("cloud implicit: need at least " + std::to_string(o.min_points) +
@@ -359,6 +394,12 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   info.noise_estimated = !(o.noise > 0);
   info.noise = o.noise > 0 ? o.noise : estimate_noise(c.points);
   const double sigma = std::max(info.noise, kSigmaFloor * m.size);
+  info.spacing = median_spacing(area);
+  if (o.noise_aware || o.acceptance_per_rho > 0)
+    info.scan_noise = o.noise > 0 ? o.noise : estimate_scan_noise(c.points);
+  const Rule rule = fit_rule(o, sigma, info.scan_noise / info.spacing, c.points.rows());
+  info.min_points = rule.min_points;
+  info.acceptance = rule.acceptance;
 
   std::vector<Cell> cells(1);
   size_t begin = 0;
@@ -366,7 +407,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
     const size_t end = cells.size();
     detail::parallel_for(
         static_cast<long>(end - begin), detail::resolve_threads(o.threads), [&](long t, int) {
-          process(cells[begin + static_cast<size_t>(t)], pts, index, o, m.origin, m.size, sigma);
+          process(cells[begin + static_cast<size_t>(t)], pts, index, o, m.origin, m.size, rule);
         });
     for (size_t i = begin; i < end; ++i) {
       if (!cells[i].split)

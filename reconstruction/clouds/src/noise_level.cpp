@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -63,6 +64,13 @@ double estimate_noise(const Eigen::MatrixX3d& P, int k, int samples) {
     return 0;
   std::nth_element(var.begin(), var.begin() + var.size() / 2, var.end());
   return std::sqrt(var[var.size() / 2]);
+}
+
+double estimate_scan_noise(const Eigen::MatrixX3d& P, int samples) {
+  // k and 2k neighbours: the cubic term's variance grows by 2^3 between them
+  constexpr int kSmall = 12, kLarge = 24;
+  const double s1 = estimate_noise(P, kSmall, samples), s2 = estimate_noise(P, kLarge, samples);
+  return std::sqrt(std::max(0.0, (8 * s1 * s1 - s2 * s2) / 7));
 }
 
 } // namespace interlin

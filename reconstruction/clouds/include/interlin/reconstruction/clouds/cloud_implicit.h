@@ -79,6 +79,15 @@ struct CloudFitOptions {
   // the evaluation speed for 5 to 20 % larger errors on noisy tori) and the ball whose points a
   // cell's fit uses (Ohtake et al.'s 0.75).
   double support = 0.6, fit_ball = 0.75;
+  // Noise-aware neighbourhood (docs/formulas.md "Point clouds"): with rho = sigma_n / spacing
+  // (sigma_n: estimate_scan_noise, or the given noise; spacing: the median point spacing), every
+  // fit averages at least 460 rho^2 points, the Cramer-Rao count (0.8 sigma_n / e)^2 for an
+  // offset error e = 0.037 spacing. No change for rho < 0.21 (460 rho^2 < 20), e.g. noise-free
+  // models (rho ~ 0).
+  bool noise_aware = true;
+  // Opt-in: both acceptance thresholds times min(2, 1 + acceptance_per_rho x rho) (8: blades
+  // -9 to -41 %, but a thin ellipsoid at sigma = 0.09 spacing +14 %; docs/benchmarks.md).
+  double acceptance_per_rho = 0;
   int threads = 0; // 0: all cores
   // Progress lines (one per octree level); called from the calling thread.
   std::function<void(const std::string&)> progress;
@@ -95,6 +104,10 @@ struct CloudFitInfo {
   double within_3_sigma = 0;  // fraction of points with |F| / |grad F| <= 3 sigma
   bool flipped = false;       // the normals pointed inward and were flipped
   double seconds = 0;
+  double spacing = 0;    // median point spacing (sqrt of the area per point)
+  double scan_noise = 0; // noise_aware: sigma_n (estimate_scan_noise or the given noise)
+  int min_points = 0;    // points per fit used
+  double acceptance = 1; // multiple of the acceptance thresholds used
 };
 
 // Fits the implicit function to a cloud with consistently oriented normals (orient_normals).
@@ -104,20 +117,19 @@ struct CloudFitInfo {
 // rms distance to its points is at most 1.5 sigma and the largest at most 4 sigma (both floored
 // at 1e-6 of the root cube), when its children would hold fewer than min_points points each
 // (it holds fewer than 4 min_points: a ball of half the radius holds about a quarter of a
-// surface's points), or at max_depth. A cell with fewer than min_points points in its fit ball
-// takes its min_points nearest points: fitted like any cell when its support ball holds one of
-// them, else (a far cell) the plane through the nearest point normal to the direction from it to
-// the cell's centre, on the side the generalized winding number of the cloud (Barill et al.
-// 2018) puts the centre: Q is about minus the distance to the points outside, plus the distance
-// inside, and never changes sign within the ball (the tangent planes of a thin wall's two sides
-// both say "inside" past its edge, which made spurious sheets). After fitting, every leaf whose
-// centre is at least 2 point spacings from the points and whose Q there contradicts the winding
-// number takes that plane too (info.sign_fixed_leaves).
-// Before fitting, the normals' orientation is checked by the divergence theorem (sum of
-// a_i n_i . (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per point):
-// inward normals are flipped and info.flipped is set.
-// Throws std::invalid_argument for a cloud without normals, fewer than min_points points or bad
-// options.
+// surface's points; min_points raised by noise_aware on noisy scans), or at max_depth. A cell with
+// fewer than min_points points in its fit ball takes its min_points nearest points: fitted like any
+// cell when its support ball holds one of them, else (a far cell) the plane through the nearest
+// point normal to the direction from it to the cell's centre, on the side the generalized winding
+// number of the cloud (Barill et al. 2018) puts the centre: Q is about minus the distance to the
+// points outside, plus the distance inside, and never changes sign within the ball (the tangent
+// planes of a thin wall's two sides both say "inside" past its edge, which made spurious sheets).
+// After fitting, every leaf whose centre is at least 2 point spacings from the points and whose Q
+// there contradicts the winding number takes that plane too (info.sign_fixed_leaves). Before
+// fitting, the normals' orientation is checked by the divergence theorem (sum of a_i n_i . (p_i -
+// centroid) = 3 x volume > 0 for outward normals, a_i the area per point): inward normals are
+// flipped and info.flipped is set. Throws std::invalid_argument for a cloud without normals, fewer
+// than min_points points or bad options.
 CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& options = {},
                                  CloudFitInfo* info = nullptr);
 
