@@ -11,6 +11,7 @@
 // Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R] [--depths D,D]
 //                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
 //                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--no-thin-walls]
+//                     [--exact-sigmas S,S]
 // (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
 // inspection.)
 // (--methods: which of interlin (unstructured and, for slices, sectioned), PCL and Open3D run;
@@ -27,6 +28,8 @@
 // truth and the point-set Chamfer of the points and of their projections onto the truth.)
 // (--no-thin-walls: every case's normals prepared with CloudPrepOptions::thin_walls off, the
 // orientation before session 9.)
+// (--exact-sigmas: one more case blade-exact-sigma-S per sigma S (cm): the blade with the true
+// normals at that noise, for a noise family; name them in --cases.)
 
 #include "cloud_cases.h"
 #include "poisson_baselines.h"
@@ -433,7 +436,8 @@ struct Options {
   std::string cases = "all", methods = "all";
   int points = 100000, resolution = 256, threads = 2;
   std::vector<int> depths{8, 9};
-  std::vector<std::string> fits; // --fit, one interlin row each
+  std::vector<std::string> fits;         // --fit, one interlin row each
+  std::vector<std::string> exact_sigmas; // --exact-sigmas: cases blade-exact-sigma-S
   bool diagnose = false, floor = false, no_thin_walls = false;
 };
 
@@ -499,6 +503,19 @@ Options parse_options(int argc, char** argv) {
         throw UsageError(e.what());
       }
       o.fits.push_back(v);
+    } else if (a == "--exact-sigmas") {
+      for (const std::string& s : split(v)) {
+        std::size_t used = 0;
+        double x = -1;
+        try {
+          x = std::stod(s, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != s.size() || !(x >= 0))
+          throw UsageError(a + " wants sigmas >= 0 (cm), not '" + s + "'");
+        o.exact_sigmas.push_back(s);
+      }
     } else if (a == "--depths") {
       o.depths.clear();
       for (const std::string& d : split(v))
@@ -551,6 +568,10 @@ int main(int argc, char** argv) {
       {"valve", [&] { return model_cloud("valve", points, 0, 10); }},
       {"naca0011_plate", [&] { return model_cloud("naca0011_plate", points, 0, 11); }},
       {"valve-noisy", [&] { return model_cloud("valve", points, 0.001, 12); }}};
+  for (const std::string& s : o.exact_sigmas) // the true normals: the fit alone against the noise
+    all.push_back({"blade-exact-sigma-" + s, [&points, s] {
+                     return blade_unstructured(points, std::stod(s), 0, 1, Normals::exact);
+                   }});
   std::vector<std::string> keys;
   for (const auto& entry : all)
     keys.push_back(entry.first);
