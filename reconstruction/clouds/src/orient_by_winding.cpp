@@ -52,6 +52,10 @@ constexpr double kSideProbes[] = {0.25, 0.5, 1.0};
 // outnumber the pairs each in front of the other (a gap's facing sides, or a slot's).
 constexpr int kWallNeighbours = 16;
 constexpr double kWallSpacings = 0.5;
+// The thin-wall passes: each reads the normals the previous one left, so a side whose neighbours
+// were mostly wrong (a gap to the wall test) is turned once enough of them are right; a point
+// turned is never turned back (its tests then both say outward). At most kMaxSidePasses.
+constexpr int kMaxSidePasses = 10;
 
 int find(std::vector<int>& parent, int i) {
   while (parent[size_t(i)] != i)
@@ -204,8 +208,8 @@ bool on_a_wall(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
 // it (the other side of a thin wall, or the body's own curvature) lie in front of it on the
 // whole (sum of their offsets along n positive); (2) the decided patches' winding number is
 // larger in front of it than behind it (sum over the kSideProbes offsets); (3) on_a_wall, read
-// from the normals before any of these turns (a concave edge's or slot's far side also lies in
-// front, and (2) is weak there).
+// from the normals before the pass (a narrow gap's or slot's far side also lies in front, and
+// (2) is weak there). Passes repeat until one turns none (kMaxSidePasses).
 void orient_thin_wall_sides(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N,
                             const detail::NeighbourIndex& index, const Eigen::VectorXd& area,
                             const std::vector<int>& which, int R, double sigma) {
@@ -223,22 +227,29 @@ void orient_thin_wall_sides(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N,
       contrast += w(p - f * std::sqrt(area(i)) * n) - w(p + f * std::sqrt(area(i)) * n);
     return contrast < 0;
   };
-  const Eigen::MatrixX3d N_in = N;
   std::vector<int> idx;
   std::vector<double> d2;
-  for (Index i = 0; i < P.rows(); ++i) {
-    if (which[size_t(i)] < R)
-      continue;
-    index.knn(P.row(i).transpose(), kSideNeighbours + 1, idx, d2);
-    double ahead = 0; // sum of the off-sheet neighbours' offsets along n
-    for (int j : idx) {
-      const Eigen::RowVector3d e = P.row(j) - P.row(i);
-      const double h = e.dot(N_in.row(i));
-      if (std::abs(h) > kSideSigmas * sigma && (e - h * N_in.row(i)).norm() <= std::abs(h))
-        ahead += h;
+  for (int pass = 0; pass < kMaxSidePasses; ++pass) {
+    const Eigen::MatrixX3d N_in = N;
+    Index turned = 0;
+    for (Index i = 0; i < P.rows(); ++i) {
+      if (which[size_t(i)] < R)
+        continue;
+      index.knn(P.row(i).transpose(), kSideNeighbours + 1, idx, d2);
+      double ahead = 0; // sum of the off-sheet neighbours' offsets along n
+      for (int j : idx) {
+        const Eigen::RowVector3d e = P.row(j) - P.row(i);
+        const double h = e.dot(N_in.row(i));
+        if (std::abs(h) > kSideSigmas * sigma && (e - h * N_in.row(i)).norm() <= std::abs(h))
+          ahead += h;
+      }
+      if (ahead > 0 && winding_says_inward(i) && on_a_wall(P, N_in, index, i, std::sqrt(area(i)))) {
+        N.row(i) *= -1;
+        ++turned;
+      }
     }
-    if (ahead > 0 && winding_says_inward(i) && on_a_wall(P, N_in, index, i, std::sqrt(area(i))))
-      N.row(i) *= -1;
+    if (turned == 0)
+      break;
   }
 }
 

@@ -251,7 +251,7 @@ TEST_CASE("orientation at thin walls' edges: the thin-wall sides turn inward nor
   // prepare_cloud's steps (PCL normals, propagation, the winding-number repair) on ellipsoids
   // 0.08-0.12 thick in the middle (3-5 point spacings of 0.025), rims as sharp as a blade's
   // edge, noise 0.001 and 0.003. Without thin_walls 93-858 of the 6000 normals point inward
-  // (measured; the family's total 2874); with it 89-697 (total 1857, 35 % fewer, every case
+  // (measured; the family's total 2874); with it 89-688 (total 1832, 36 % fewer, every case
   // fewer; session 8's rule without the re-propagation and the wall test: 2207). Bounds: the
   // family's total falls by at least 25 %; no case gains more than 5 (ties within the
   // platforms' rounding).

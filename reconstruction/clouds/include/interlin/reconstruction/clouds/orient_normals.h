@@ -48,8 +48,9 @@ void orient_normals(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
 // in front of it than behind it (probes at 0.25, 0.5, 1 point spacings), and (3) it lies on a
 // wall, not by a narrow gap or slot, whose facing sides look the same to (1): among its 16
 // nearest points, pairs with antiparallel normals each more than half a point spacing behind
-// the other outnumber the pairs each in front of the other. docs/benchmarks.md "Thin-wall
-// sides" and "Thin walls by default".
+// the other outnumber the pairs each in front of the other. The tests are repeated on the
+// normals each pass leaves until a pass turns none (at most 10 passes). docs/benchmarks.md
+// "Thin-wall sides" and "Thin walls by default".
 // Inputs:  P #P by 3, N #P by 3 unit normals oriented by orient_normals, k neighbours (>= 8 used)
 // Outputs: N with the chosen normals negated; returns how many normals were negated.
 Eigen::Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
