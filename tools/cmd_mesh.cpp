@@ -274,7 +274,10 @@ void print_surface_summary(const std::string& input, const Eigen::AlignedBox3d& 
             << ", " << fmt(box.max()(2)) << "]\n";
   std::cout << "  grid         " << g.nodes(0) << " x " << g.nodes(1) << " x " << g.nodes(2)
             << " nodes, cell " << fmt(g.spacing(0)) << ", " << info.subboxes(0) << " x "
-            << info.subboxes(1) << " x " << info.subboxes(2) << " sub-boxes, "
+            << info.subboxes(1) << " x " << info.subboxes(2) << " sub-boxes"
+            << (info.skipped > 0 ? " (" + std::to_string(info.skipped) + " without surface skipped)"
+                                 : std::string())
+            << ", "
             << (o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency())))
             << " threads\n";
   std::cout << "  mesh         " << r.vertices << " vertices, " << r.faces << " triangles, "

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace interlin {
 
@@ -97,6 +98,32 @@ public:
       *g -= d / dist;
     }
     return f;
+  }
+
+  // +1 (-1) when F is certainly > 0 (< 0) on the closed box B, else 0: F is a weighted mean of
+  // the local functions whose support balls contain the point (positive weights), so it has the
+  // sign that all the local functions meeting B certainly have on B. Outside the root cube
+  // F(x) = F(x') - |x - x'| keeps only a negative sign.
+  int sign_on(const Eigen::AlignedBox3d& B) const {
+    const Eigen::AlignedBox3d cube(m_->origin, m_->origin + Vector3d::Constant(m_->size));
+    const Eigen::AlignedBox3d C = B.intersection(cube);
+    if (C.isEmpty())
+      return 0;
+    std::vector<int> balls;
+    collect(0, m_->origin, m_->size, C, balls);
+    std::sort(balls.begin(), balls.end());
+    balls.erase(std::unique(balls.begin(), balls.end()), balls.end());
+    int sign = 0;
+    for (int j : balls) {
+      const Ball& b = balls_[static_cast<size_t>(j)];
+      if (C.squaredExteriorDistance(Vector3d(b.x, b.y, b.z)) >= b.r2)
+        continue; // the ball misses C: its weight is 0 there
+      const int s = detail::fit_sign_on_box(m_->fits[static_cast<size_t>(j)], C);
+      if (s == 0 || (sign != 0 && s != sign))
+        return 0;
+      sign = s;
+    }
+    return sign < 0 || cube.contains(B) ? sign : 0;
   }
 
 private:
@@ -194,6 +221,22 @@ private:
     return nodes_[static_cast<size_t>(k)];
   }
 
+  // The balls listed by the lookup leaves that meet the box C (node: lo, side).
+  void collect(int node, const Vector3d& lo, double side, const Eigen::AlignedBox3d& C,
+               std::vector<int>& out) const {
+    const Eigen::AlignedBox3d cube(lo, lo + Vector3d::Constant(side));
+    if (!cube.intersects(C))
+      return;
+    const Node& n = nodes_[static_cast<size_t>(node)];
+    if (n.child < 0) {
+      out.insert(out.end(), list_.begin() + n.begin, list_.begin() + n.end);
+      return;
+    }
+    const double h = 0.5 * side;
+    for (int o = 0; o < 8; ++o)
+      collect(n.child + o, lo + h * Vector3d(o & 1, (o >> 1) & 1, (o >> 2) & 1), h, C, out);
+  }
+
   double inside(const Vector3d& x, Vector3d* g) const {
     const Node& leaf = locate(x);
     double sw = 0, swq = 0;
@@ -248,6 +291,7 @@ ImplicitFunction cloud_implicit_function(std::shared_ptr<const CloudImplicit> mo
       G.row(i) = g.transpose();
     }
   };
+  f.sign_on_box = [e](const Eigen::AlignedBox3d& B) { return e->sign_on(B); };
   return f;
 }
 

@@ -5,6 +5,8 @@
 
 #include "interlin/reconstruction/clouds/cloud_implicit.h"
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace interlin::detail {
@@ -50,6 +52,53 @@ inline double wendland(double r) {
   const double q1 = sheet_value(f.sheet[0], x, g ? &g1 : nullptr);
   const double q2 = sheet_value(f.sheet[1], x, g ? &g2 : nullptr);
   return r_join(q1, q2, f.conjunction ? -1.0 : 1.0, g1, g2, g);
+}
+
+// A closed interval [lo, hi] of real numbers, with the interval arithmetic the box bounds need.
+struct Interval {
+  double lo = 0, hi = 0;
+};
+inline Interval operator+(Interval a, Interval b) {
+  return {a.lo + b.lo, a.hi + b.hi};
+}
+inline Interval operator*(double c, Interval a) {
+  return c >= 0 ? Interval{c * a.lo, c * a.hi} : Interval{c * a.hi, c * a.lo};
+}
+inline Interval operator*(Interval a, Interval b) {
+  const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  return {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
+}
+inline Interval square(Interval a) {
+  const double l = a.lo * a.lo, h = a.hi * a.hi;
+  return a.lo <= 0 && a.hi >= 0 ? Interval{0, std::max(l, h)}
+                                : Interval{std::min(l, h), std::max(l, h)};
+}
+
+// The values of Q = h(u, v) - w of one sheet over the box B, bounded: (u, v, w) each take the
+// exact range of a linear function over B, h is bounded by interval arithmetic (an outer bound,
+// as the three are treated as independent).
+inline Interval sheet_range(const HeightSheet& s, const Eigen::AlignedBox3d& B) {
+  const Eigen::Vector3d mid = s.frame * (B.center() - s.origin);
+  const Eigen::Vector3d half = s.frame.cwiseAbs() * (0.5 * B.sizes());
+  const Interval u{mid(0) - half(0), mid(0) + half(0)}, v{mid(1) - half(1), mid(1) + half(1)};
+  const auto& c = s.c;
+  const Interval h = c[0] * square(u) + c[1] * (u * v) + c[2] * square(v) + c[3] * u + c[4] * v +
+                     Interval{c[5], c[5]};
+  return {h.lo - mid(2) - half(2), h.hi - mid(2) + half(2)};
+}
+
+// +1 (-1) when the local function is certainly > 0 (< 0) on the box B, else 0. Rvachev's R0
+// conjunction is > 0 exactly where both arguments are, < 0 where either is; the disjunction dually.
+inline int fit_sign_on_box(const LocalFit& f, const Eigen::AlignedBox3d& B) {
+  auto sign = [](Interval q) { return q.lo > 0 ? 1 : q.hi < 0 ? -1 : 0; };
+  const int a = sign(sheet_range(f.sheet[0], B));
+  if (f.sheets == 1)
+    return a;
+  const int b = sign(sheet_range(f.sheet[1], B));
+  const int agree = f.conjunction ? 1 : -1; // both must be this for the join to be it
+  if (a == agree && b == agree)
+    return agree;
+  return a == -agree || b == -agree ? -agree : 0;
 }
 
 } // namespace interlin::detail

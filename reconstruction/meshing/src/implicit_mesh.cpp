@@ -32,6 +32,17 @@ double clip(double v, double b) {
   return v > b ? b : v;
 }
 
+// Whether the sub-box of grid nodes lo .. lo + n - 1 holds no surface: f.sign_on_box says F < 0
+// on it, or F > 0 and it does not reach the grid's outer layer (where the mesh closes along the
+// box). Then marching cubes would find no triangle in it.
+bool no_surface(const ImplicitFunction& f, const RegularGrid& grid, const Eigen::Array3i& lo,
+                const Eigen::Array3i& n) {
+  const Eigen::Array3i hi = lo + n - 1;
+  const Eigen::AlignedBox3d B(grid.point(lo(0), lo(1), lo(2)), grid.point(hi(0), hi(1), hi(2)));
+  const int sign = f.sign_on_box(B);
+  return sign < 0 || (sign > 0 && (lo > 0).all() && (hi < grid.nodes - 1).all());
+}
+
 } // namespace
 
 ImplicitFunction clip_to_box(const ImplicitFunction& f, const Eigen::AlignedBox3d& box) {
@@ -78,9 +89,11 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
   const RegularGrid grid =
       o.cell > 0 ? grid_with_cell(box, o.cell) : grid_with_resolution(box, o.resolution);
   const Eigen::Array3i cells = grid.nodes - 1;
+  // small sub-boxes when most can be skipped (narrow band), else few large ones
+  const int max_cells = f.sign_on_box ? 16 : 64;
   Eigen::Array3i k;
   for (int a = 0; a < 3; ++a) {
-    k(a) = o.subboxes(a) > 0 ? o.subboxes(a) : (cells(a) + 63) / 64;
+    k(a) = o.subboxes(a) > 0 ? o.subboxes(a) : (cells(a) + max_cells - 1) / max_cells;
     if (o.subboxes(a) < 0 || k(a) > cells(a))
       throw std::invalid_argument("implicit_mesh: " + std::to_string(o.subboxes(a)) +
                                   " sub-boxes along axis " + std::to_string(a) + " for " +
@@ -105,7 +118,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
       std::to_string(grid.nodes(2)) + " nodes (cell " + std::to_string(grid.spacing(0)) + "), " +
       std::to_string(blocks_total) + " sub-boxes on " + std::to_string(workers) + " threads");
   std::vector<detail::BlockMesh> blocks(static_cast<size_t>(blocks_total));
-  std::atomic<long> samples{0}, nonfinite{0}, clipped{0}, done{0};
+  std::atomic<long> samples{0}, nonfinite{0}, clipped{0}, skipped{0}, done{0};
   std::atomic<long long> triangles{0};
   struct Scratch {
     std::vector<double> values;
@@ -122,6 +135,11 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
                 c1 = int(long(cells(a)) * (bi[a] + 1) / k(a));
       lo(a) = c0;
       n(a) = c1 - c0 + 1;
+    }
+    if (f.sign_on_box && no_surface(f, grid, lo, n)) {
+      ++skipped;
+      ++done;
+      return;
     }
     Scratch& s = scratch[size_t(w)];
     const long slice = long(n(0)) * n(1);
@@ -166,6 +184,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
   out.samples = samples;
   out.nonfinite = nonfinite;
   out.clipped = clipped;
+  out.skipped = skipped;
 
   t0 = Clock::now();
   std::vector<EdgeVertex> E;

@@ -225,3 +225,54 @@ TEST_CASE("cloud implicit: the noise-aware neighbourhood, no worse with noise, n
       }
     }
 }
+
+TEST_CASE("cloud implicit: the sign on a box is a bound, and the narrow band meshes the same",
+          "[clouds][implicit]") {
+  // Random boxes of three sizes over sphere, torus and thin ellipsoid fits: wherever sign_on_box
+  // claims a sign, F has it at every one of 64 random points of the box and at its 8 corners.
+  for (const test::Shape shape :
+       {test::Shape::sphere, test::Shape::torus, test::Shape::ellipsoid}) {
+    const PointCloud c = test::sample_shape({shape}, 5000, 0.003, 31);
+    const Fitted f = fit(c, 0.003);
+    REQUIRE(f.F.sign_on_box);
+    std::mt19937 rng(32);
+    std::uniform_real_distribution<double> U(0, 1);
+    const Eigen::Vector3d lo = f.model->box.min(), size = f.model->box.sizes();
+    long decided = 0;
+    for (const double side : {0.02, 0.1, 0.4})
+      for (int b = 0; b < 300; ++b) {
+        const Eigen::Vector3d corner =
+            lo + size.cwiseProduct(Eigen::Vector3d(U(rng), U(rng), U(rng)));
+        const Eigen::AlignedBox3d B(corner, corner + Eigen::Vector3d::Constant(side));
+        const int sign = f.F.sign_on_box(B);
+        if (sign == 0)
+          continue;
+        ++decided;
+        Points3 P(72, 3);
+        for (int i = 0; i < 64; ++i)
+          P.row(i) = (corner + side * Eigen::Vector3d(U(rng), U(rng), U(rng))).transpose();
+        for (int i = 0; i < 8; ++i)
+          P.row(64 + i) = B.corner(Eigen::AlignedBox3d::CornerType(i)).transpose();
+        const Eigen::VectorXd v = values(f.F, P);
+        INFO("shape " << int(shape) << " side " << side << " sign " << sign);
+        CHECK((sign * v.array() > 0).all());
+      }
+    CHECK(decided > 300); // the bound decides most boxes away from the surface
+    // The narrow band skips sub-boxes but gives the mesh of the full grid, triangle for triangle.
+    ImplicitFunction full = f.F;
+    full.sign_on_box = nullptr;
+    ImplicitMeshOptions mo;
+    mo.resolution = 64;
+    mo.subboxes = Eigen::Array3i::Constant(8);
+    Eigen::MatrixXd V1, V2;
+    Eigen::MatrixXi T1, T2;
+    ImplicitMeshInfo i1, i2;
+    implicit_mesh(f.F, mo, V1, T1, &i1);
+    implicit_mesh(full, mo, V2, T2, &i2);
+    CHECK(i1.skipped > 0);
+    CHECK(i2.skipped == 0);
+    CHECK(i1.samples < i2.samples);
+    CHECK(V1 == V2);
+    CHECK(T1 == T2);
+  }
+}

@@ -23,6 +23,10 @@ struct ImplicitFunction {
       gradient;
   // A box that contains the body (the model's declared bounding box); empty when unknown.
   Eigen::AlignedBox3d box;
+  // Optional: +1 (-1) when F is certainly > 0 (< 0) at every point of the closed box B, 0 when it
+  // cannot tell (a bound, e.g. interval arithmetic: 0 is always a correct answer). Meshers skip
+  // boxes with a sign (implicit_mesh's narrow band). Empty: unknown everywhere.
+  std::function<int(const Eigen::AlignedBox3d& B)> sign_on_box;
 };
 
 } // namespace interlin

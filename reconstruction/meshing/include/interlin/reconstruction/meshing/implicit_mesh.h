@@ -23,7 +23,8 @@ struct ImplicitMeshOptions {
   int resolution = 128; // cells along the box's longest side (grid_with_resolution) ...
   double cell = 0;      // ... unless a cell size h > 0 is given (grid_with_cell)
   // Sub-boxes along x, y, z (each >= 1, at most the cells on that axis); 0 on an axis: automatic,
-  // at most 64 cells per sub-box along it.
+  // at most 64 cells per sub-box along it (16 when f.sign_on_box can skip the ones the surface
+  // does not cross).
   Eigen::Array3i subboxes = Eigen::Array3i::Zero();
   int threads = 0;     // worker threads; 0: all cores
   bool project = true; // refine every vertex onto F = 0 along its grid edge (else linear)
@@ -44,13 +45,16 @@ struct ImplicitMeshInfo {
   long nonfinite = 0; // sampled values that were NaN or infinite (treated as outside,
                       // +inf as inside)
   long clipped = 0;   // inside nodes on the grid's outer layer: the body reaches the box
+  long skipped = 0;   // sub-boxes not sampled: f.sign_on_box gave them one sign (narrow band)
   double seconds_extract = 0, seconds_merge = 0, seconds_project = 0; // wall clock
 };
 
 // Meshes the body {F > 0} (within the box).
-// Steps: grid over the box (cells from o.resolution or o.cell); the nodes of each sub-box sampled
-// in batches of one z-slice and triangulated by marching cubes (all sub-boxes in parallel); the
-// sub-box meshes merged, each vertex on a shared plane kept once (its grid edge identifies it,
+// Steps: grid over the box (cells from o.resolution or o.cell); each sub-box to which
+// f.sign_on_box gives one sign is skipped (it holds no surface: a narrow band around F = 0, same
+// mesh), unless it is inside and touches the box (the closing faces); the nodes of each sub-box
+// sampled in batches of one z-slice and triangulated by marching cubes (all sub-boxes in parallel);
+// the sub-box meshes merged, each vertex on a shared plane kept once (its grid edge identifies it,
 // and both copies are bit-identical); every vertex moved onto F = 0 along its grid edge
 // (project_edge_vertices). The function actually meshed is min(F, B) with B the signed distance
 // to the box, and nodes of the grid's outer layer are never inside, so the result is closed.
