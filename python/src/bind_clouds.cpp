@@ -170,17 +170,20 @@ rms_distance, max_distance, within_3_sigma, ...), leaves (number of local fits).
 } // namespace
 
 py::dict cloud_fit_dict(const CloudFitInfo& i) {
-  return fields_dict(i, field("noise", &CloudFitInfo::noise),
-                     field("noise_estimated", &CloudFitInfo::noise_estimated),
-                     field("cells", &CloudFitInfo::cells), field("leaves", &CloudFitInfo::leaves),
-                     field("two_sheet_leaves", &CloudFitInfo::two_sheet_leaves),
-                     field("far_leaves", &CloudFitInfo::far_leaves),
-                     field("sign_fixed_leaves", &CloudFitInfo::sign_fixed_leaves),
-                     field("depth", &CloudFitInfo::depth),
-                     field("rms_distance", &CloudFitInfo::rms_distance),
-                     field("max_distance", &CloudFitInfo::max_distance),
-                     field("within_3_sigma", &CloudFitInfo::within_3_sigma),
-                     field("flipped", &CloudFitInfo::flipped));
+  return fields_dict(
+      i, field("noise", &CloudFitInfo::noise),
+      field("noise_estimated", &CloudFitInfo::noise_estimated),
+      field("cells", &CloudFitInfo::cells), field("leaves", &CloudFitInfo::leaves),
+      field("two_sheet_leaves", &CloudFitInfo::two_sheet_leaves),
+      field("far_leaves", &CloudFitInfo::far_leaves),
+      field("sign_fixed_leaves", &CloudFitInfo::sign_fixed_leaves),
+      field("depth", &CloudFitInfo::depth), field("rms_distance", &CloudFitInfo::rms_distance),
+      field("max_distance", &CloudFitInfo::max_distance),
+      field("within_3_sigma", &CloudFitInfo::within_3_sigma),
+      field("flipped", &CloudFitInfo::flipped), field("spacing", &CloudFitInfo::spacing),
+      field("scan_noise", &CloudFitInfo::scan_noise),
+      field("min_points", &CloudFitInfo::min_points),
+      field("acceptance", &CloudFitInfo::acceptance));
 }
 
 py::dict cloud_report_dict(const CloudPrepReport& r) {

@@ -47,6 +47,12 @@ def test_fit_a_noisy_sphere_and_mesh_it():
     r = np.linalg.norm(V, axis=1)
     assert interlin.check_mesh(V, T)["watertight"] and np.max(np.abs(r - 1)) < 0.01
     assert model.info["within_3_sigma"] > 0.95
+    # the noise-aware neighbourhood's inputs: spacing sqrt(4 pi / 3000) = 0.065 (area per point,
+    # 10 % for the points' uneven spread), scan noise sigma within 30 %, rho = 0.03 < 0.21: 20
+    info = model.info
+    assert abs(info["spacing"] / np.sqrt(4 * np.pi / 3000) - 1) < 0.1
+    assert abs(info["scan_noise"] / 0.002 - 1) < 0.3
+    assert info["min_points"] == 20 and info["acceptance"] == 1.0
 
 
 def test_bad_cloud_files_raise_input_errors(tmp_path):
