@@ -48,7 +48,8 @@ Options:
   --box X0,Y0,Z0,X1,Y1,Z1
                          region to mesh (default: the model's box)
   --threads T            worker threads (default: all cores)
-  --subboxes K|KX,KY,KZ  sub-boxes per axis (default: at most 64 cells per sub-box)
+  --subboxes K|KX,KY,KZ  sub-boxes per axis (default: at most 64 cells per sub-box, 16 for
+                         point-cloud models, whose sub-boxes without surface are skipped)
   --no-project           keep the vertices at the linear interpolation of the grid values
   --smooth K             K sweeps of seed 003's smoothing functional (vertices slide over the
                          surface onto creases; costs about 3000 evaluations per vertex and sweep)
