@@ -240,9 +240,7 @@ void surface_mesh(const ImplicitFunction& f, const std::string& input, ImplicitM
   if (!quiet && info.nonfinite > 0)
     std::cerr << "warning: " << info.nonfinite
               << " sampled values were NaN or infinite (taken as outside, +inf as inside)\n";
-  if (!quiet && info.clipped > 0)
-    std::cerr << "warning: the body reaches the box at " << info.clipped
-              << " grid nodes; the mesh is cut by the box there\n";
+  warn_body_reaches_box(info.clipped, quiet);
   if (F.rows() == 0)
     throw_input_error(input, 0,
                       "no surface in the box: F > 0 at none of the " +

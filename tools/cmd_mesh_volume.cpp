@@ -199,6 +199,12 @@ std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions&
 
 } // namespace
 
+void warn_body_reaches_box(long nodes, bool quiet) {
+  if (!quiet && nodes > 0)
+    std::cerr << "warning: the body reaches the box at " << nodes
+              << " grid nodes; the mesh is cut by the box there\n";
+}
+
 bool volume_output_ok(const std::string& path) {
   return is_volume_mesh_path(path) || surface_output(path) || lower_extension(path) == ".png";
 }
@@ -241,6 +247,7 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   std::vector<ElementQuality> per;
   const VolumeQuality q = volume_quality(m.V, m.C, r.threads, &per);
   print_summary(r, m, info, q, o);
+  warn_body_reaches_box(info.clipped, r.quiet);
   if (!r.quiet && info.lost_fraction() > kLostVolumeWarning)
     std::cerr << "warning: the mesh leaves out " << fmt(100 * info.lost_fraction(), 2)
               << " % of the body's volume (" << lost_volume_fix(info, o) << ")\n";

@@ -168,3 +168,33 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
   CHECK(cut.status == 0);
   CHECK_THAT(cut.out, !Catch::Contains("coverage"));
 }
+
+TEST_CASE("CLI mesh --volume: a body that reaches the box is warned about as for surfaces",
+          "[cli][mesh][volume]") {
+  // The ball cut by --box at z = 0: the surface mesh and both volume meshes name the same grid
+  // nodes (the same grid and the same check), once; -q keeps the summary and drops the warning.
+  TempDir d("climeshvol");
+  write_file(d / "ball.rf", kBall);
+  const std::string base =
+      "mesh " + (d / "ball.rf") + " --resolution 12 --box -1.2,-1.2,0,1.2,1.2,1.2";
+  const Run surface = run(base + " -o " + (d / "b.stl"));
+  REQUIRE(surface.status == 0);
+  const size_t at = surface.err.find("warning: the body reaches the box at ");
+  REQUIRE(at != std::string::npos);
+  const std::string warning = surface.err.substr(at, surface.err.find('\n', at) + 1 - at);
+  CHECK_THAT(warning, Catch::EndsWith(" grid nodes; the mesh is cut by the box there\n"));
+  for (const std::string kind : {"tet", "hex"}) {
+    const Run r = run(base + " -o " + (d / "b.vtu") + " --volume " + kind);
+    INFO(kind << ": " << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.err, Catch::Contains(warning));
+    CHECK(r.err.find("warning: the body reaches") == r.err.rfind("warning: the body reaches"));
+    const Run quiet = run(base + " -o " + (d / "b.vtu") + " --volume " + kind + " -q");
+    CHECK(quiet.err.empty());
+    CHECK_THAT(quiet.out, Catch::Contains("inverted 0"));
+  }
+  // In the model's own box the ball reaches nothing: no warning.
+  const Run inside =
+      run("mesh " + (d / "ball.rf") + " --resolution 12 --volume tet -o " + (d / "b.vtu"));
+  CHECK_THAT(inside.err, !Catch::Contains("reaches the box"));
+}

@@ -325,3 +325,34 @@ TEST_CASE("volume_mesh: surface smoothing of the cut boundary folds no element",
   CHECK(info.max_boundary_f < 1e-8);
   CHECK(std::abs(q.volume - 3.868844) < 0.005 * 3.868844);
 }
+
+TEST_CASE("volume_mesh: where the body reaches the box, counted as implicit_mesh counts it",
+          "[volume]") {
+  // The unit ball cut by the box z >= 0 (as in the implicit_mesh test): the grid's outer nodes
+  // with F > 0, counted here directly, by the surface mesher (sub-boxes sharing planes: each node
+  // once) and by the volume mesher, whose mesh is cut there too. In its own box: none.
+  const ImplicitFunction f = test::sphere(1.0);
+  const Eigen::AlignedBox3d cut(Eigen::Vector3d(-1.1, -1.1, 0), Eigen::Vector3d(1.1, 1.1, 1.1));
+  const RegularGrid g = grid_with_resolution(cut, 12);
+  long expected = 0;
+  for (long k = 0; k < g.nodes(2); ++k)
+    for (long j = 0; j < g.nodes(1); ++j)
+      for (long i = 0; i < g.nodes(0); ++i)
+        expected += g.outer(i, j, k) && g.point(i, j, k).squaredNorm() < 1;
+  REQUIRE(expected > 0);
+  ImplicitMeshOptions so = test::at_resolution(12);
+  so.box = cut;
+  so.subboxes = Eigen::Array3i(2, 2, 2);
+  CHECK(test::checked_mesh(f, so).info.clipped == expected);
+  for (const VolumeElements e : {VolumeElements::tetrahedra, VolumeElements::hexahedra}) {
+    VolumeMeshOptions o;
+    o.elements = e;
+    o.resolution = 12;
+    VolumeMeshInfo info;
+    volume_mesh(f, o, &info);
+    CHECK(info.clipped == 0);
+    o.box = cut;
+    volume_mesh(f, o, &info);
+    CHECK(info.clipped == expected);
+  }
+}
