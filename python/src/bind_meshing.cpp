@@ -50,7 +50,7 @@ py::dict volume_info_dict(const VolumeMeshInfo& i) {
       field("layer_elements", &VolumeMeshInfo::layer_elements),
       field("unprojected", &VolumeMeshInfo::unprojected), field("held", &VolumeMeshInfo::held),
       field("max_boundary_f", &VolumeMeshInfo::max_boundary_f),
-      field("clipped", &VolumeMeshInfo::clipped),
+      field("on_zero", &VolumeMeshInfo::on_zero), field("clipped", &VolumeMeshInfo::clipped),
       field("suggested_cell", &VolumeMeshInfo::suggested_cell));
   d["body_volume"] = i.coverage.body;
   d["lost_volume"] = i.coverage.lost;
@@ -216,8 +216,8 @@ hexahedra "dual": one per inside grid node, corners at the cells' points on F = 
 2006: walls one node layer thick kept; "tet" with "dual" raises ValueError);
 rule "strict" (F > eps) or "inclusive" (F >= -eps) for the inside nodes; margin: inside nodes
 within margin x cell of F = 0 count as outside (no thin layer elements). info["held"]: layer
-nodes held short of F = 0 so that no element folds (max_boundary_f is over the others);
-info["clipped"]: grid nodes where the body reaches the box;
+nodes held short of F = 0 so that no element folds (max_boundary_f is over the others,
+info["on_zero"] counts them); info["clipped"]: grid nodes where the body reaches the box;
 projected layer: body_volume (the grid clipped at F = 0), lost_volume (its part no element
 covers: walls with no inner cell under the layer), lost_thickness (their mean thickness) and
 suggested_cell (the cell that keeps such walls), with a UserWarning above 0.5 % lost.)");

@@ -375,6 +375,9 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
     }
   }
   out.max_boundary_f = max_boundary_value(f, vm, held);
+  out.on_zero = 0;
+  for (size_t v = 0; v < vm.boundary.size(); ++v)
+    out.on_zero += vm.boundary[v] && (held.empty() || !held[v]);
 }
 
 // vm.B, the element facets used once (facet_corners columns when there are no elements), and
