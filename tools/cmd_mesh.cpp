@@ -108,7 +108,9 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
                          per cell (default 25000000 tetrahedra, 12500000 hexahedra:
                          about 4 GB of memory when the body fills the grid)
   The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
-  inverted elements (an error unless 0), max |F| at the boundary nodes and the volume.
+  inverted elements (an error unless 0), the boundary nodes on F = 0 (all but those held
+  short of it or not projected) with max |F| there, and the volume; a body that reaches the
+  box is warned about as for surface meshes.
   interlin mesh data/models/body11.rf -o body11.msh -o body11.vtu --volume tet --resolution 40
   interlin mesh data/models/body11.rf -o body11.inp --volume hex --resolution 20 --seed-rule
   interlin mesh data/models/body11.rf -o body11.vtu --volume tet --resolution 20 --adapt 2
