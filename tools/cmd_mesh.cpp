@@ -109,7 +109,9 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
                          per cell (default 25000000 tetrahedra, 12500000 hexahedra:
                          about 4 GB of memory when the body fills the grid)
   The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
-  inverted elements (an error unless 0), max |F| at the boundary nodes and the volume.
+  inverted elements (an error unless 0), the boundary nodes on F = 0 (all but those held
+  short of it or not projected) with max |F| there, and the volume; a body that reaches the
+  box is warned about as for surface meshes.
   interlin mesh data/models/body11.rf -o body11.msh -o body11.vtu --volume tet --resolution 40
   interlin mesh data/models/body11.rf -o body11.inp --volume hex --resolution 20 --seed-rule
   interlin mesh data/models/body11.rf -o body11.vtu --volume tet --resolution 20 --adapt 2
@@ -241,9 +243,7 @@ void surface_mesh(const ImplicitFunction& f, const std::string& input, ImplicitM
   if (!quiet && info.nonfinite > 0)
     std::cerr << "warning: " << info.nonfinite
               << " sampled values were NaN or infinite (taken as outside, +inf as inside)\n";
-  if (!quiet && info.clipped > 0)
-    std::cerr << "warning: the body reaches the box at " << info.clipped
-              << " grid nodes; the mesh is cut by the box there\n";
+  warn_body_reaches_box(info.clipped, quiet);
   if (F.rows() == 0)
     throw_input_error(input, 0,
                       "no surface in the box: F > 0 at none of the " +

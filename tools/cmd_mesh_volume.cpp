@@ -143,8 +143,9 @@ std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunctio
   return reports;
 }
 
+// The summary on stdout; `on_zero` counts the boundary nodes on F = 0 (after any refinement).
 void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMeshInfo& info,
-                   const VolumeQuality& q, const VolumeMeshOptions& o) {
+                   const VolumeQuality& q, const VolumeMeshOptions& o, long on_zero) {
   const RegularGrid& g = info.grid;
   const bool tets = m.C.cols() == 4;
   const long boundary_nodes = std::count(m.boundary.begin(), m.boundary.end(), char(1));
@@ -167,9 +168,11 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
     std::cout << ", radius ratio min " << fmt(q.min_radius_ratio, 3) << " mean "
               << fmt(q.mean_radius_ratio, 3);
   std::cout << ", inverted " << q.inverted << "\n";
-  std::cout << "  boundary     " << boundary_nodes << " nodes on F = 0 (max |F| "
-            << fmt(info.max_boundary_f, 3) << ", " << info.unprojected << " not projected, "
-            << info.held << " held short of it to keep their elements valid)\n";
+  std::cout << "  boundary     " << boundary_nodes << " nodes, " << on_zero << " on F = 0 ("
+            << fmt(boundary_nodes > 0 ? 100.0 * double(on_zero) / double(boundary_nodes) : 0, 3)
+            << " %, max |F| " << fmt(info.max_boundary_f, 3) << "), " << info.unprojected
+            << " not projected, " << info.held
+            << " held short of it to keep their elements valid\n";
   std::cout << "  geometry     volume " << fmt(q.volume, 7) << "\n";
   if (info.coverage.body > 0)
     std::cout << "  coverage     " << fmt(100 * info.lost_fraction(), 3)
@@ -198,6 +201,12 @@ std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions&
 }
 
 } // namespace
+
+void warn_body_reaches_box(long nodes, bool quiet) {
+  if (!quiet && nodes > 0)
+    std::cerr << "warning: the body reaches the box at " << nodes
+              << " grid nodes; the mesh is cut by the box there\n";
+}
 
 bool volume_output_ok(const std::string& path) {
   return is_volume_mesh_path(path) || surface_output(path) || lower_extension(path) == ".png";
@@ -240,7 +249,11 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   progress("checking the elements");
   std::vector<ElementQuality> per;
   const VolumeQuality q = volume_quality(m.V, m.C, r.threads, &per);
-  print_summary(r, m, info, q, o);
+  long on_zero = info.on_zero;
+  for (const RefinementReport& p : passes) // the refinement's new boundary nodes not held
+    on_zero += p.projected - p.held;
+  print_summary(r, m, info, q, o, on_zero);
+  warn_body_reaches_box(info.clipped, r.quiet);
   if (!r.quiet && info.lost_fraction() > kLostVolumeWarning)
     std::cerr << "warning: the mesh leaves out " << fmt(100 * info.lost_fraction(), 2)
               << " % of the body's volume (" << lost_volume_fix(info, o) << ")\n";

@@ -42,15 +42,16 @@ py::dict report_dict(const MeshReport& r) {
 }
 
 py::dict volume_info_dict(const VolumeMeshInfo& i) {
-  py::dict d = fields_dict(i, field("inside_nodes", &VolumeMeshInfo::inside_nodes),
-                           field("dropped_nodes", &VolumeMeshInfo::dropped_nodes),
-                           field("removed_cells", &VolumeMeshInfo::removed_cells),
-                           field("inner_cells", &VolumeMeshInfo::inner_cells),
-                           field("layer_elements", &VolumeMeshInfo::layer_elements),
-                           field("unprojected", &VolumeMeshInfo::unprojected),
-                           field("held", &VolumeMeshInfo::held),
-                           field("max_boundary_f", &VolumeMeshInfo::max_boundary_f),
-                           field("suggested_cell", &VolumeMeshInfo::suggested_cell));
+  py::dict d = fields_dict(
+      i, field("inside_nodes", &VolumeMeshInfo::inside_nodes),
+      field("dropped_nodes", &VolumeMeshInfo::dropped_nodes),
+      field("removed_cells", &VolumeMeshInfo::removed_cells),
+      field("inner_cells", &VolumeMeshInfo::inner_cells),
+      field("layer_elements", &VolumeMeshInfo::layer_elements),
+      field("unprojected", &VolumeMeshInfo::unprojected), field("held", &VolumeMeshInfo::held),
+      field("max_boundary_f", &VolumeMeshInfo::max_boundary_f),
+      field("on_zero", &VolumeMeshInfo::on_zero), field("clipped", &VolumeMeshInfo::clipped),
+      field("suggested_cell", &VolumeMeshInfo::suggested_cell));
   d["body_volume"] = i.coverage.body;
   d["lost_volume"] = i.coverage.lost;
   d["lost_thickness"] = i.coverage.thickness();
@@ -215,7 +216,8 @@ hexahedra "dual": one per inside grid node, corners at the cells' points on F = 
 2006: walls one node layer thick kept; "tet" with "dual" raises ValueError);
 rule "strict" (F > eps) or "inclusive" (F >= -eps) for the inside nodes; margin: inside nodes
 within margin x cell of F = 0 count as outside (no thin layer elements). info["held"]: layer
-nodes held short of F = 0 so that no element folds (max_boundary_f is over the others);
+nodes held short of F = 0 so that no element folds (max_boundary_f is over the others,
+info["on_zero"] counts them); info["clipped"]: grid nodes where the body reaches the box;
 projected layer: body_volume (the grid clipped at F = 0), lost_volume (its part no element
 covers: walls with no inner cell under the layer), lost_thickness (their mean thickness) and
 suggested_cell (the cell that keeps such walls), with a UserWarning above 0.5 % lost.)");

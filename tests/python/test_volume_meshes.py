@@ -123,6 +123,10 @@ def test_mesh_volume_boundary_choice_and_held_nodes():
     assert interlin.volume_quality(V, C, threads=1)["inverted"] == 0
     assert info["held"] > 0 and info["max_boundary_f"] < 1e-8
     assert np.count_nonzero(np.abs(plate(V[on])) > 1e-8) <= info["held"]
+    # on_zero: the boundary nodes not held, every one of them on F = 0; the plate is in its box
+    assert info["on_zero"] == np.count_nonzero(on) - info["held"]
+    assert np.count_nonzero(np.abs(plate(V[on])) <= 1e-8) >= info["on_zero"]
+    assert info["clipped"] == 0
 
 
 def test_mesh_volume_reports_the_volume_the_layer_loses():

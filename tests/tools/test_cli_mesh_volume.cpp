@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -21,6 +22,24 @@ namespace {
 
 const char* const kBall = "% unit ball\nbox(-1.2, -1.2, -1.2, 1.2, 1.2, 1.2);\n"
                           "res = 1 - x^2 - y^2 - z^2;\n";
+
+// The summary's boundary line "B nodes, Z on F = 0 (P %, max |F| M), U not projected, H held
+// ...": Z is B less the held and not projected nodes (the projected layer holds the nodes it
+// could not project, dual hexahedra count them apart), P = 100 Z / B to the 3 digits printed.
+void check_boundary_line(const std::string& out) {
+  const size_t at = out.find("  boundary     ");
+  REQUIRE(at != std::string::npos);
+  long boundary = 0, on_zero = 0, unprojected = 0, held = 0;
+  double percent = 0, max_f = 0;
+  REQUIRE(std::sscanf(out.c_str() + at,
+                      "  boundary     %ld nodes, %ld on F = 0 (%lf %%, max |F| %lf), %ld not "
+                      "projected, %ld held short of it",
+                      &boundary, &on_zero, &percent, &max_f, &unprojected, &held) == 6);
+  INFO(out.substr(at, out.find('\n', at) - at));
+  CHECK(on_zero <= boundary - held);
+  CHECK(on_zero >= boundary - held - unprojected);
+  CHECK(percent == Approx(100.0 * double(on_zero) / double(boundary)).epsilon(5e-3));
+}
 
 } // namespace
 
@@ -86,14 +105,15 @@ TEST_CASE("CLI mesh --volume --seed-rule: seed 003's counts for body (11)", "[cl
   const struct {
     std::string kind, counts, boundary;
   } cases[] = {{"tet", "25944 tetrahedra (12948 inner cells, 12996 in the boundary layer)",
-                "2158 nodes on F = 0"},
+                "boundary     2158 nodes, "},
                {"hex", "6048 hexahedra (2976 inner cells, 3072 in the boundary layer)",
-                "3064 nodes on F = 0"}};
+                "boundary     3064 nodes, "}};
   for (const auto& c : cases) {
     const Run r = run("mesh " INTERLIN_DATA_DIR "/models/body11.rf -o " + (d / "m.inp") +
                       " --volume " + c.kind + " --resolution 20 --seed-rule --sweeps 0 -q");
     INFO(c.kind << ": " << r.out << r.err);
     CHECK_THAT(r.out, Catch::Contains(c.counts) && Catch::Contains(c.boundary));
+    check_boundary_line(r.out);
     CHECK((r.status == 0 || r.err.find("inverted elements") != std::string::npos));
     CHECK(files_in(d) == (r.status == 0 ? 1u : 0u));
     fs::remove(d / "m.inp");
@@ -147,6 +167,7 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
                                     "(walls about 0.0962 thick have no inner cell under the "
                                     "boundary layer: use --cell 0.021 or smaller, or --volume "
                                     "tet)\n"));
+  check_boundary_line(r.out); // measured: 48 nodes, all held
   const Run quiet = run(mesh + "hex --cell 0.05 -q");
   CHECK(quiet.err.empty());
   CHECK_THAT(quiet.out, Catch::Contains("coverage"));
@@ -159,6 +180,7 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
   const Run dual = run(mesh + "hex --cell 0.05 --boundary dual");
   REQUIRE(dual.status == 0);
   CHECK_THAT(dual.out, Catch::Contains("inverted 0\n"));
+  check_boundary_line(dual.out); // measured: 564 of 988 on F = 0
   const size_t c = dual.out.find("coverage     ");
   REQUIRE(c != std::string::npos);
   CHECK(std::stod(dual.out.substr(c + 13)) < 10);
@@ -167,4 +189,34 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
   const Run cut = run(mesh + "tet --cell 0.05 -q");
   CHECK(cut.status == 0);
   CHECK_THAT(cut.out, !Catch::Contains("coverage"));
+}
+
+TEST_CASE("CLI mesh --volume: a body that reaches the box is warned about as for surfaces",
+          "[cli][mesh][volume]") {
+  // The ball cut by --box at z = 0: the surface mesh and both volume meshes name the same grid
+  // nodes (the same grid and the same check), once; -q keeps the summary and drops the warning.
+  TempDir d("climeshvol");
+  write_file(d / "ball.rf", kBall);
+  const std::string base =
+      "mesh " + (d / "ball.rf") + " --resolution 12 --box -1.2,-1.2,0,1.2,1.2,1.2";
+  const Run surface = run(base + " -o " + (d / "b.stl"));
+  REQUIRE(surface.status == 0);
+  const size_t at = surface.err.find("warning: the body reaches the box at ");
+  REQUIRE(at != std::string::npos);
+  const std::string warning = surface.err.substr(at, surface.err.find('\n', at) + 1 - at);
+  CHECK_THAT(warning, Catch::EndsWith(" grid nodes; the mesh is cut by the box there\n"));
+  for (const std::string kind : {"tet", "hex"}) {
+    const Run r = run(base + " -o " + (d / "b.vtu") + " --volume " + kind);
+    INFO(kind << ": " << r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.err, Catch::Contains(warning));
+    CHECK(r.err.find("warning: the body reaches") == r.err.rfind("warning: the body reaches"));
+    const Run quiet = run(base + " -o " + (d / "b.vtu") + " --volume " + kind + " -q");
+    CHECK(quiet.err.empty());
+    CHECK_THAT(quiet.out, Catch::Contains("inverted 0"));
+  }
+  // In the model's own box the ball reaches nothing: no warning.
+  const Run inside =
+      run("mesh " + (d / "ball.rf") + " --resolution 12 --volume tet -o " + (d / "b.vtu"));
+  CHECK_THAT(inside.err, !Catch::Contains("reaches the box"));
 }

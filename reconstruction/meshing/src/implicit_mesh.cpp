@@ -146,6 +146,14 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
     s.values.resize(size_t(slice * n(2)));
     s.P.resize(slice, 3);
     long bad = 0, cut = 0;
+    // The sub-box owns its nodes except those on its upper planes shared with a neighbour.
+    auto owns = [&](int i, int j, int kk) {
+      const int local[3] = {i, j, kk};
+      for (int a = 0; a < 3; ++a)
+        if (local[a] == n(a) - 1 && bi[a] < k(a) - 1)
+          return false;
+      return true;
+    };
     for (int kk = 0; kk < n(2); ++kk) {
       for (int j = 0, r = 0; j < n(1); ++j)
         for (int i = 0; i < n(0); ++i, ++r)
@@ -158,11 +166,9 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
           double& v = vals(r);
           bad += !std::isfinite(v);
           const long gi = lo(0) + i, gj = lo(1) + j;
-          const bool outer = gi == 0 || gj == 0 || gk == 0 || gi == grid.nodes(0) - 1 ||
-                             gj == grid.nodes(1) - 1 || gk == grid.nodes(2) - 1;
-          if (outer && v > 0) {
-            ++cut;
-            v = 0; // never inside: the surface closes along the box
+          if (grid.outer(gi, gj, gk) && reaches_box(v)) {
+            cut += owns(i, j, kk); // a node on a shared plane counts once
+            v = 0;                 // never inside: the surface closes along the box
           }
           v = clip(v, box_value(s.P.row(r), box));
         }

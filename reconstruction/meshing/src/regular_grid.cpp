@@ -49,6 +49,18 @@ RegularGrid grid_with_cell(const Eigen::AlignedBox3d& box, double h) {
   return grid_with_step(box, h, "grid_with_cell");
 }
 
+long nodes_reaching_box(const RegularGrid& g, const Eigen::VectorXd& S) {
+  if (S.size() != g.size())
+    throw std::invalid_argument("nodes_reaching_box: S must hold one value per grid node");
+  long count = 0;
+  for (long k = 0; k < g.nodes(2); ++k)
+    for (long j = 0; j < g.nodes(1); ++j)
+      for (long i = 0; i < g.nodes(0); ++i)
+        if (g.outer(i, j, k) && reaches_box(S(g.index(i, j, k))))
+          ++count;
+  return count;
+}
+
 void sample_grid(const ImplicitFunction& f, const RegularGrid& g, Eigen::VectorXd& S, int threads) {
   if (!f.value)
     throw std::invalid_argument("sample_grid: the implicit function has no value");

@@ -375,6 +375,9 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
     }
   }
   out.max_boundary_f = max_boundary_value(f, vm, held);
+  out.on_zero = 0;
+  for (size_t v = 0; v < vm.boundary.size(); ++v)
+    out.on_zero += vm.boundary[v] && (held.empty() || !held[v]);
 }
 
 // vm.B, the element facets used once (facet_corners columns when there are no elements), and
@@ -386,14 +389,16 @@ void mark_boundary(VolumeMesh& vm, int facet_corners) {
     vm.boundary[size_t(vm.B.data()[i])] = 1;
 }
 
-// F at the nodes of g (node order of RegularGrid), with the progress line.
+// F at the nodes of g (node order of RegularGrid), with the progress line; out.clipped counts the
+// outer nodes where the body reaches the box (the mesh is cut there, as the surface mesher's).
 Eigen::VectorXd sampled_grid(const ImplicitFunction& f, const RegularGrid& g,
-                             const VolumeMeshOptions& o) {
+                             const VolumeMeshOptions& o, VolumeMeshInfo& out) {
   if (o.progress)
     o.progress("grid " + std::to_string(g.nodes(0)) + " x " + std::to_string(g.nodes(1)) + " x " +
                std::to_string(g.nodes(2)) + " nodes, sampling F");
   Eigen::VectorXd S;
   sample_grid(f, g, S, o.threads);
+  out.clipped = nodes_reaching_box(g, S);
   return S;
 }
 
@@ -438,7 +443,7 @@ VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const Vol
   g.origin -= g.spacing;
   g.nodes += 2;
   out.grid = g;
-  Eigen::VectorXd S = sampled_grid(f, g, o);
+  Eigen::VectorXd S = sampled_grid(f, g, o, out);
   fill_zero_sheets(g, S, o.epsilon, o.threads);
   out.inside_nodes = (S.array() > o.epsilon).count();
   if (o.progress)
@@ -532,7 +537,7 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     return dual_mesh(f, g, o, out);
   }
 
-  Eigen::VectorXd S = sampled_grid(f, g, o);
+  Eigen::VectorXd S = sampled_grid(f, g, o, out);
   if (tets && o.boundary == VolumeBoundary::cut) {
     say("cutting the grid's tetrahedra at F = 0");
     VolumeMesh vm = cut_mesh(f, g, S, o, out);

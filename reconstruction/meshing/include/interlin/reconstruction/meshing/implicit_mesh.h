@@ -44,7 +44,7 @@ struct ImplicitMeshInfo {
   long projection_evaluations = 0;
   long nonfinite = 0; // sampled values that were NaN or infinite (treated as outside,
                       // +inf as inside)
-  long clipped = 0;   // inside nodes on the grid's outer layer: the body reaches the box
+  long clipped = 0;   // outer grid nodes where the body reaches the box (reaches_box), each once
   long skipped = 0;   // sub-boxes not sampled: f.sign_on_box gave them one sign (narrow band)
   double seconds_extract = 0, seconds_merge = 0, seconds_project = 0; // wall clock
 };

@@ -24,7 +24,22 @@ struct RegularGrid {
   Eigen::AlignedBox3d box() const {
     return {origin, point(nodes(0) - 1, nodes(1) - 1, nodes(2) - 1)};
   }
+  // Whether node (i, j, k) lies on the outer layer, the faces of the grid's box.
+  bool outer(long i, long j, long k) const {
+    return i == 0 || j == 0 || k == 0 || i == nodes(0) - 1 || j == nodes(1) - 1 ||
+           k == nodes(2) - 1;
+  }
 };
+
+// Whether a value F sampled at an outer node means the body reaches the box there: a mesh of
+// {F > 0} on the grid is then cut by the box (implicit_mesh and volume_mesh count such nodes, and
+// `interlin mesh` warns).
+inline bool reaches_box(double F) {
+  return F > 0;
+}
+
+// The outer nodes of g whose value in S (#g nodes, node order) reaches the box (reaches_box).
+long nodes_reaching_box(const RegularGrid& g, const Eigen::VectorXd& S);
 
 // A grid of cubic cells covering `box`: `cells` cells along the box's longest side (cell size
 // h = longest side / cells) and ceil(side / h) cells along the others, each axis centred on the

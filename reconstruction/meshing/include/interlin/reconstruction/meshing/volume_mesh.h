@@ -76,6 +76,13 @@ struct VolumeMeshInfo {
   long held = 0;             // projected layer: boundary nodes held short of F = 0 so that no
                              // element folds (cut: 0)
   double max_boundary_f = 0; // largest |F| at a boundary node not held
+  // Boundary nodes on F = 0: neither held nor unprojected (the projected layer's unprojected nodes
+  // stay on their grid nodes and are held with their zero-height elements; dual hexahedra hold
+  // them explicitly); max_boundary_f is over these. Where the body reaches the box (clipped > 0)
+  // the nodes on the box faces are counted although off F = 0.
+  long on_zero = 0;
+  long clipped = 0; // outer grid nodes where the body reaches the box (reaches_box): the mesh is
+                    // cut by the box there, its boundary nodes on the box faces off F = 0
   VolumeSmoothingReport smoothing;
   // Projected layer: the body's volume on this grid and the part of it no element covers (walls
   // with no inner cell under the layer; uncovered_volume). cut: not measured (all 0; the mesh is
