@@ -9,10 +9,10 @@
 #include "interlin/reconstruction/implicit/normalize_model.h"
 #include "interlin/reconstruction/implicit/section_body_build.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
-#include "interlin/reconstruction/meshing/surface_mesh.h"
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 #include "interlin/reconstruction/meshing/volume_quality.h"
 
+#include "../implicit/section_body_checks.h"
 #include "support/test_blades.h"
 #include "support/test_clouds.h"
 #include "support/test_support.h"
@@ -64,15 +64,9 @@ const IflBody& section_body() {
     SectionBodyOptions o;
     o.resolution = 16; // the far field: omega = 0 exactly on the loft at any grid
     const SectionBodyBuild b = build_section_body(test::blade_sections(family), o);
-    SurfaceMeshOptions mo;
-    mo.nu = 800;
-    mo.nv = 200;
-    mo.cap = true;
-    mo.required_v.assign(b.report.loft.section_v.data(),
-                         b.report.loft.section_v.data() + b.report.loft.section_v.size());
     Eigen::MatrixXd V;
     Eigen::MatrixXi F;
-    surface_mesh(to_piecewise(b.model.side), mo, V, F);
+    test::capped_mesh(b, V, F);
     test::TempDir d("iflvolume");
     return IflBody{through_file(to_ifl(b.model), d, "blade.ifl"), check_mesh(V, F).volume};
   }();
