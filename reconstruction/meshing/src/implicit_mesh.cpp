@@ -40,7 +40,9 @@ bool no_surface(const ImplicitFunction& f, const RegularGrid& grid, const Eigen:
   const Eigen::Array3i hi = lo + n - 1;
   const Eigen::AlignedBox3d B(grid.point(lo(0), lo(1), lo(2)), grid.point(hi(0), hi(1), hi(2)));
   const int sign = f.sign_on_box(B);
-  return sign < 0 || (sign > 0 && (lo > 0).all() && (hi < grid.nodes - 1).all());
+  // the sub-box reaches the outer layer exactly when one of its two extreme corners lies on it
+  return sign < 0 ||
+         (sign > 0 && !grid.outer(lo(0), lo(1), lo(2)) && !grid.outer(hi(0), hi(1), hi(2)));
 }
 
 } // namespace
@@ -125,6 +127,13 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
     Points3 P;
   };
   std::vector<Scratch> scratch(static_cast<size_t>(workers));
+  // A sub-box done, sampled or skipped: a progress line every tenth of them.
+  auto finished = [&] {
+    const long d = ++done;
+    if (blocks_total >= 10 && (d * 10) / blocks_total != ((d - 1) * 10) / blocks_total)
+      say("sampled and triangulated " + std::to_string(d) + " of " + std::to_string(blocks_total) +
+          " sub-boxes");
+  };
   auto t0 = Clock::now();
   detail::parallel_for(blocks_total, workers, [&](long b, int w) {
     const int bx = int(b % k(0)), by = int((b / k(0)) % k(1)), bz = int(b / (long(k(0)) * k(1)));
@@ -138,7 +147,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
     }
     if (f.sign_on_box && no_surface(f, grid, lo, n)) {
       ++skipped;
-      ++done;
+      finished();
       return;
     }
     Scratch& s = scratch[size_t(w)];
@@ -181,10 +190,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
     samples += slice * n(2);
     nonfinite += bad;
     clipped += cut;
-    const long d = ++done;
-    if (blocks_total >= 10 && (d * 10) / blocks_total != ((d - 1) * 10) / blocks_total)
-      say("sampled and triangulated " + std::to_string(d) + " of " + std::to_string(blocks_total) +
-          " sub-boxes");
+    finished();
   });
   out.seconds_extract = seconds_since(t0);
   out.samples = samples;
