@@ -109,20 +109,33 @@ public:
     const Eigen::AlignedBox3d C = B.intersection(cube);
     if (C.isEmpty())
       return 0;
-    std::vector<int> balls;
-    collect(0, m_->origin, m_->size, C, balls);
-    std::sort(balls.begin(), balls.end());
-    balls.erase(std::unique(balls.begin(), balls.end()), balls.end());
+    // A ball listed by several lookup leaves is bounded once: marked with this call's stamp.
+    thread_local std::vector<unsigned> seen;
+    thread_local unsigned stamp = 0;
+    if (seen.size() < balls_.size() || ++stamp == 0) {
+      seen.assign(std::max(seen.size(), balls_.size()), 0);
+      stamp = 1;
+    }
     int sign = 0;
-    for (int j : balls) {
+    // stops at the first fit without a sign or with the other one
+    const bool one_sign = visit(0, m_->origin, m_->size, C, [&](int j) {
+      if (seen[size_t(j)] == stamp)
+        return true;
+      seen[size_t(j)] = stamp;
       const Ball& b = balls_[static_cast<size_t>(j)];
       if (C.squaredExteriorDistance(Vector3d(b.x, b.y, b.z)) >= b.r2)
-        continue; // the ball misses C: its weight is 0 there
-      const int s = detail::fit_sign_on_box(m_->fits[static_cast<size_t>(j)], C);
+        return true; // the ball misses C: its weight is 0 there
+      // the fit's weight is 0 outside its ball: its sign matters on C and the ball's cube only
+      const Vector3d c(b.x, b.y, b.z), r = Vector3d::Constant(std::sqrt(b.r2));
+      const Eigen::AlignedBox3d D = C.intersection(Eigen::AlignedBox3d(c - r, c + r));
+      const int s = detail::fit_sign_on_box(m_->fits[static_cast<size_t>(j)], D);
       if (s == 0 || (sign != 0 && s != sign))
-        return 0;
+        return false;
       sign = s;
-    }
+      return true;
+    });
+    if (!one_sign)
+      return 0;
     return sign < 0 || cube.contains(B) ? sign : 0;
   }
 
@@ -221,20 +234,26 @@ private:
     return nodes_[static_cast<size_t>(k)];
   }
 
-  // The balls listed by the lookup leaves that meet the box C (node: lo, side).
-  void collect(int node, const Vector3d& lo, double side, const Eigen::AlignedBox3d& C,
-               std::vector<int>& out) const {
+  // Calls op(ball) for the balls listed by the lookup leaves that meet the box C (node: lo,
+  // side) while op returns true; false when op did.
+  template <class Op>
+  bool visit(int node, const Vector3d& lo, double side, const Eigen::AlignedBox3d& C,
+             Op&& op) const {
     const Eigen::AlignedBox3d cube(lo, lo + Vector3d::Constant(side));
     if (!cube.intersects(C))
-      return;
+      return true;
     const Node& n = nodes_[static_cast<size_t>(node)];
     if (n.child < 0) {
-      out.insert(out.end(), list_.begin() + n.begin, list_.begin() + n.end);
-      return;
+      for (int t = n.begin; t < n.end; ++t)
+        if (!op(list_[static_cast<size_t>(t)]))
+          return false;
+      return true;
     }
     const double h = 0.5 * side;
     for (int o = 0; o < 8; ++o)
-      collect(n.child + o, lo + h * Vector3d(o & 1, (o >> 1) & 1, (o >> 2) & 1), h, C, out);
+      if (!visit(n.child + o, lo + h * Vector3d(o & 1, (o >> 1) & 1, (o >> 2) & 1), h, C, op))
+        return false;
+    return true;
   }
 
   double inside(const Vector3d& x, Vector3d* g) const {

@@ -32,17 +32,66 @@ double clip(double v, double b) {
   return v > b ? b : v;
 }
 
-// Whether the sub-box of grid nodes lo .. lo + n - 1 holds no surface: f.sign_on_box says F < 0
-// on it, or F > 0 and it does not reach the grid's outer layer (where the mesh closes along the
-// box). Then marching cubes would find no triangle in it.
-bool no_surface(const ImplicitFunction& f, const RegularGrid& grid, const Eigen::Array3i& lo,
-                const Eigen::Array3i& n) {
+// The sign f.sign_on_box gives the block of grid nodes lo .. lo + n - 1 when marching cubes would
+// find no triangle in it: -1 when F < 0 on it, +1 when F > 0 and it does not reach the grid's
+// outer layer (where the mesh closes along the box); else 0.
+int block_sign(const ImplicitFunction& f, const RegularGrid& grid, const Eigen::Array3i& lo,
+               const Eigen::Array3i& n) {
   const Eigen::Array3i hi = lo + n - 1;
   const Eigen::AlignedBox3d B(grid.point(lo(0), lo(1), lo(2)), grid.point(hi(0), hi(1), hi(2)));
   const int sign = f.sign_on_box(B);
-  // the sub-box reaches the outer layer exactly when one of its two extreme corners lies on it
-  return sign < 0 ||
-         (sign > 0 && !grid.outer(lo(0), lo(1), lo(2)) && !grid.outer(hi(0), hi(1), hi(2)));
+  // the block reaches the outer layer exactly when one of its two extreme corners lies on it
+  if (sign > 0 && (grid.outer(lo(0), lo(1), lo(2)) || grid.outer(hi(0), hi(1), hi(2))))
+    return 0;
+  return sign;
+}
+
+// Blocks of at most this many cells per axis are sampled whole: a smaller one costs more in
+// sign_on_box than its nodes in evaluations.
+constexpr int kFinestBlock = 4;
+
+// The nodes of a sub-box (local lo .. lo + n - 1 of the sub-box whose first node is `base`,
+// node (i, j, k) at i + n0 (j + n1 k)) that must be sampled: those of a block without a sign.
+// A block with a sign gives it to its nodes as their value (+-1) unless they are also in a
+// sampled block: every cell that marching cubes cuts lies in a block without a sign, so its 8
+// corners are sampled and the mesh is the same as from all nodes.
+void mark_band(const ImplicitFunction& f, const RegularGrid& grid, const Eigen::Array3i& base,
+               const Eigen::Array3i& dims, const Eigen::Array3i& lo, const Eigen::Array3i& n,
+               int sign, std::vector<signed char>& mark) {
+  auto each_node = [&](auto&& op) {
+    for (int k = lo(2); k < lo(2) + n(2); ++k)
+      for (int j = lo(1); j < lo(1) + n(1); ++j)
+        for (int i = lo(0); i < lo(0) + n(0); ++i)
+          op(mark[size_t(i + dims(0) * (j + dims(1) * k))]);
+  };
+  if (sign != 0) { // sampled marks (2) win over signs
+    each_node([&](signed char& m) { m = m == 2 ? m : static_cast<signed char>(sign); });
+    return;
+  }
+  if ((n - 1).maxCoeff() <= kFinestBlock) {
+    each_node([](signed char& m) { m = 2; });
+    return;
+  }
+  // halve the longer axes; children share their middle planes
+  const Eigen::Array3i cells = n - 1;
+  for (int c = 0; c < 8; ++c) {
+    Eigen::Array3i clo = lo, cn = n;
+    bool empty = false;
+    for (int a = 0; a < 3; ++a) {
+      const bool split = cells(a) > kFinestBlock;
+      const int half = cells(a) / 2;
+      const int upper = (c >> a) & 1;
+      if (!split) {
+        empty |= upper == 1;
+        continue;
+      }
+      clo(a) = lo(a) + upper * half;
+      cn(a) = (upper ? cells(a) - half : half) + 1;
+    }
+    if (empty)
+      continue;
+    mark_band(f, grid, base, dims, clo, cn, block_sign(f, grid, base + clo, cn), mark);
+  }
 }
 
 } // namespace
@@ -124,7 +173,9 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
   std::atomic<long long> triangles{0};
   struct Scratch {
     std::vector<double> values;
+    std::vector<signed char> mark; // per node: 2 sampled, else the sign of its block
     Points3 P;
+    Eigen::VectorXd batch;
   };
   std::vector<Scratch> scratch(static_cast<size_t>(workers));
   // A sub-box done, sampled or skipped: a progress line every tenth of them.
@@ -145,16 +196,21 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
       lo(a) = c0;
       n(a) = c1 - c0 + 1;
     }
-    if (f.sign_on_box && no_surface(f, grid, lo, n)) {
-      ++skipped;
-      finished();
-      return;
-    }
     Scratch& s = scratch[size_t(w)];
     const long slice = long(n(0)) * n(1);
+    s.mark.assign(size_t(slice * n(2)), 2);
+    if (f.sign_on_box) {
+      const int sign = block_sign(f, grid, lo, n);
+      if (sign != 0) {
+        ++skipped;
+        finished();
+        return;
+      }
+      mark_band(f, grid, lo, n, Eigen::Array3i::Zero(), n, 0, s.mark);
+    }
     s.values.resize(size_t(slice * n(2)));
     s.P.resize(slice, 3);
-    long bad = 0, cut = 0;
+    long bad = 0, cut = 0, sampled = 0;
     // The sub-box owns its nodes except those on its upper planes shared with a neighbour.
     auto owns = [&](int i, int j, int kk) {
       const int local[3] = {i, j, kk};
@@ -164,22 +220,34 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
       return true;
     };
     for (int kk = 0; kk < n(2); ++kk) {
+      // the slice's marked nodes in one batch; the others take their block's sign
+      const signed char* m = s.mark.data() + slice * kk;
+      double* vals = s.values.data() + slice * kk;
+      long rows = 0;
       for (int j = 0, r = 0; j < n(1); ++j)
         for (int i = 0; i < n(0); ++i, ++r)
-          s.P.row(r) = grid.point(lo(0) + i, lo(1) + j, lo(2) + kk).transpose();
-      Eigen::Map<Eigen::VectorXd> vals(s.values.data() + slice * kk, slice);
-      f.value(s.P, vals);
+          if (m[r] == 2)
+            s.P.row(rows++) = grid.point(lo(0) + i, lo(1) + j, lo(2) + kk).transpose();
+      Eigen::VectorXd& F = s.batch;
+      F.resize(rows);
+      f.value(s.P.topRows(rows), F);
+      sampled += rows;
       const long gk = lo(2) + kk;
-      for (int j = 0, r = 0; j < n(1); ++j)
+      for (int j = 0, r = 0, q = 0; j < n(1); ++j)
         for (int i = 0; i < n(0); ++i, ++r) {
-          double& v = vals(r);
+          double& v = vals[r];
+          if (m[r] != 2) {
+            v = m[r];
+            continue;
+          }
+          v = F(q);
           bad += !std::isfinite(v);
           const long gi = lo(0) + i, gj = lo(1) + j;
           if (grid.outer(gi, gj, gk) && reaches_box(v)) {
             cut += owns(i, j, kk); // a node on a shared plane counts once
             v = 0;                 // never inside: the surface closes along the box
           }
-          v = clip(v, box_value(s.P.row(r), box));
+          v = clip(v, box_value(s.P.row(q++), box));
         }
     }
     detail::extract_block(grid, s.values.data(), n(0), slice, lo, n, true, blocks[size_t(b)]);
@@ -187,7 +255,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
       throw LimitError("the mesh has more triangles than the limit of " +
                            std::to_string(o.max_triangles),
                        "max-triangles");
-    samples += slice * n(2);
+    samples += sampled;
     nonfinite += bad;
     clipped += cut;
     finished();

@@ -45,27 +45,28 @@ struct ImplicitMeshInfo {
   long nonfinite = 0; // sampled values that were NaN or infinite (treated as outside,
                       // +inf as inside)
   long clipped = 0;   // outer grid nodes where the body reaches the box (reaches_box), each once
-  long skipped = 0;   // sub-boxes not sampled: f.sign_on_box gave them one sign (narrow band)
+  long skipped = 0;   // sub-boxes not sampled: f.sign_on_box gave them one sign (narrow band;
+                      // within the others, blocks down to 4 cells are skipped the same way)
   double seconds_extract = 0, seconds_merge = 0, seconds_project = 0; // wall clock
 };
 
 // Meshes the body {F > 0} (within the box).
 // Steps: grid over the box (cells from o.resolution or o.cell); each sub-box to which
 // f.sign_on_box gives one sign is skipped (it holds no surface: a narrow band around F = 0, same
-// mesh), unless it is inside and touches the box (the closing faces); the nodes of each sub-box
-// sampled in batches of one z-slice and triangulated by marching cubes (all sub-boxes in parallel);
-// the sub-box meshes merged, each vertex on a shared plane kept once (its grid edge identifies it,
-// and both copies are bit-identical); every vertex moved onto F = 0 along its grid edge
-// (project_edge_vertices). The function actually meshed is min(F, B) with B the signed distance
-// to the box, and nodes of the grid's outer layer are never inside, so the result is closed.
-// Guarantees: closed, 2-manifold, consistently oriented (normals out of the body), no repeated
-// vertex in a triangle and no two vertices at one point where F = 0 at grid nodes (kEdgeClamp);
-// the same mesh, up to vertex order, for any sub-box count and any thread count. Not guaranteed:
-// that features thinner than a cell are seen, or good triangle shapes (marching cubes cuts
-// slivers where the surface passes near a node: see smooth_on_surface and flip_edges).
-// f must give the same value for the same point in any batch (nodes on shared planes are sampled
-// by both sub-boxes).
-// Inputs:
+// mesh), unless it is inside and touches the box (the closing faces), and so is each block of its
+// nodes, halved down to 4 cells, with a sign (its nodes take it as their value); the nodes of each
+// sub-box sampled in batches of one z-slice and triangulated by marching cubes (all sub-boxes in
+// parallel); the sub-box meshes merged, each vertex on a shared plane kept once (its grid edge
+// identifies it, and both copies are bit-identical); every vertex moved onto F = 0 along its grid
+// edge (project_edge_vertices). The function actually meshed is min(F, B) with B the signed
+// distance to the box, and nodes of the grid's outer layer are never inside, so the result is
+// closed. Guarantees: closed, 2-manifold, consistently oriented (normals out of the body), no
+// repeated vertex in a triangle and no two vertices at one point where F = 0 at grid nodes
+// (kEdgeClamp); the same mesh, up to vertex order, for any sub-box count and any thread count. Not
+// guaranteed: that features thinner than a cell are seen, or good triangle shapes (marching cubes
+// cuts slivers where the surface passes near a node: see smooth_on_surface and flip_edges). f must
+// give the same value for the same point in any batch (nodes on shared planes are sampled by both
+// sub-boxes). Inputs:
 //   f  implicit function (value; gradient unused)
 //   o  options; std::invalid_argument for no box, bad resolution/cell/sub-boxes, LimitError past
 //      o.max_triangles
