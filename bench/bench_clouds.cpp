@@ -8,7 +8,8 @@
 // each, exact point-to-triangle distances), divided by the truth's bounding-box diagonal; wall
 // time of the reconstruction (fit + mesh; Poisson's own call, which includes its mesh).
 //
-// Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R] [--depths D,D]
+// Usage: bench_clouds [--cases NAME,NAME|all] [--points N] [--resolution R|auto]
+//                     [--cells-per-spacing K] [--depths D,D]
 //                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
 //                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--no-thin-walls]
 //                     [--exact-sigmas S,S]
@@ -71,14 +72,25 @@ namespace {
 constexpr int kSamples = 100000; // area-uniform samples per surface for the distances
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// x with up to 6 significant digits (labels and the worker's command line).
+std::string fixed(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
 struct Method {
   enum Kind { interlin, pcl, open3d, sectioned } kind;
   int depth = 8;      // Poisson octree depth
-  int resolution = 0; // interlin: grid cells along the box's longest side
+  int resolution = 0; // interlin: grid cells along the box's longest side; 0: default_mesh_cell
+  double cells_per_spacing = 3; // ... with resolution 0
   std::string fit;    // interlin: CloudFitOptions changes (--fit), empty for the defaults
   std::string label() const {
     if (kind == interlin)
-      return "interlin (resolution " + std::to_string(resolution) + ")" +
+      return "interlin (" +
+             (resolution > 0 ? "resolution " + std::to_string(resolution)
+                             : "cell spacing / " + fixed(cells_per_spacing)) +
+             ")" +
              (fit.empty() ? "" : " [" + fit + "]");
     if (kind == sectioned)
       return "interlin sectioned (slices -> loft)";
@@ -197,6 +209,8 @@ Reconstruction reconstruct(const Method& m, const PointCloud& c, int threads) {
     r.implicit = cloud_implicit_function(model);
     ImplicitMeshOptions mo;
     mo.resolution = m.resolution;
+    if (m.resolution == 0)
+      mo.cell = default_mesh_cell(r.implicit, r.implicit.box, m.cells_per_spacing);
     mo.threads = threads;
     implicit_mesh(r.implicit, mo, r.V, r.F);
   } else if (m.kind == Method::sectioned) {
@@ -387,7 +401,8 @@ Result run_worker(const std::string& self, const std::string& case_file, const M
                                       std::to_string(m.resolution),
                                       std::to_string(threads),
                                       std::to_string(fd[1]),
-                                      m.fit.empty() ? "-" : m.fit};
+                                      m.fit.empty() ? "-" : m.fit,
+                                      fixed(m.cells_per_spacing)};
   const pid_t pid = fork();
   if (pid == 0) {
     close(fd[0]);
@@ -413,7 +428,8 @@ Result run_worker(const std::string& self, const std::string& case_file, const M
 int worker(char** argv) {
   const CloudCase c = load_case(argv[2]);
   const Method m{static_cast<Method::Kind>(std::stoi(argv[3])), std::stoi(argv[4]),
-                 std::stoi(argv[5]), std::string(argv[8]) == "-" ? "" : argv[8]};
+                 std::stoi(argv[5]), std::stod(argv[9]),
+                 std::string(argv[8]) == "-" ? "" : argv[8]};
   const int threads = std::stoi(argv[6]), fd = std::stoi(argv[7]);
   const Result r = run_child(m, c, threads);
   return write(fd, &r, sizeof r) == sizeof r ? 0 : 1;
@@ -435,6 +451,7 @@ std::vector<std::string> split(const std::string& s) {
 struct Options {
   std::string cases = "all", methods = "all";
   int points = 100000, resolution = 256, threads = 2;
+  double cells_per_spacing = 3;
   std::vector<int> depths{8, 9};
   std::vector<std::string> fits;         // --fit, one interlin row each
   std::vector<std::string> exact_sigmas; // --exact-sigmas: cases blade-exact-sigma-S
@@ -489,7 +506,9 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--points")
       o.points = positive(a, v);
     else if (a == "--resolution")
-      o.resolution = positive(a, v);
+      o.resolution = v == "auto" ? 0 : positive(a, v);
+    else if (a == "--cells-per-spacing")
+      o.cells_per_spacing = std::stod(v);
     else if (a == "--threads")
       o.threads = positive(a, v);
     else if (a == "--methods")
@@ -528,7 +547,7 @@ Options parse_options(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  if (argc == 9 && std::string(argv[1]) == "--worker")
+  if (argc == 10 && std::string(argv[1]) == "--worker")
     return worker(argv);
   const std::string self = "/proc/self/exe";
   Options o;
@@ -626,16 +645,16 @@ int main(int argc, char** argv) {
     std::vector<Method> methods;
     if (run_method("interlin")) {
       if (c.sectioned())
-        methods.push_back({Method::sectioned, 0, 0, ""});
-      methods.push_back({Method::interlin, 0, resolution, ""});
+        methods.push_back({Method::sectioned, 0, 0, 0, ""});
+      methods.push_back({Method::interlin, 0, resolution, o.cells_per_spacing, ""});
       for (const std::string& fit : o.fits)
-        methods.push_back({Method::interlin, 0, resolution, fit});
+        methods.push_back({Method::interlin, 0, resolution, o.cells_per_spacing, fit});
     }
     for (int d : depths) {
       if (run_method("pcl"))
-        methods.push_back({Method::pcl, d, 0, ""});
+        methods.push_back({Method::pcl, d, 0, 0, ""});
       if (run_method("open3d"))
-        methods.push_back({Method::open3d, d, 0, ""});
+        methods.push_back({Method::open3d, d, 0, 0, ""});
     }
     double best = kNaN, best_time = kNaN, ours = kNaN, our_time = kNaN;
     std::string best_label;

@@ -245,12 +245,17 @@ void bind_meshing(py::module_& m) {
   bind_refinement(m);
   m.def(
       "mesh_implicit",
-      [](const ImplicitFunction& f, int resolution, double cell, const std::optional<MatrixXd>& box,
-         const Eigen::Vector3i& subboxes, int threads, bool project, double tolerance) {
+      [](const ImplicitFunction& f, std::optional<int> resolution, double cell,
+         const std::optional<MatrixXd>& box, const Eigen::Vector3i& subboxes, int threads,
+         bool project, double tolerance) {
         ImplicitMeshOptions o;
         if (box)
           o.box = box_from_array(*box);
-        o.resolution = resolution, o.cell = cell, o.subboxes = subboxes.array();
+        o.cell = cell, o.subboxes = subboxes.array();
+        if (resolution)
+          o.resolution = *resolution;
+        else if (!(cell > 0))
+          o.cell = default_mesh_cell(f, o.box.isEmpty() ? f.box : o.box);
         o.threads = threads, o.project = project;
         o.root.tolerance = tolerance;
         MatrixXd V;
@@ -261,11 +266,13 @@ void bind_meshing(py::module_& m) {
         }
         return py::make_tuple(std::move(V), std::move(F));
       },
-      py::arg("f"), py::arg("resolution") = 128, py::arg("cell") = 0.0, py::arg("box") = py::none(),
+      py::arg("f"), py::arg("resolution") = py::none(), py::arg("cell") = 0.0,
+      py::arg("box") = py::none(),
       py::arg("subboxes") = Eigen::Vector3i::Zero(), py::arg("threads") = 0,
       py::arg("project") = true, py::arg("tolerance") = 1e-10,
       R"(Closed mesh of the body {F > 0} (interlin mesh): a grid with `resolution` cubic cells along
-the box's longest side (or cells of size `cell`), marching cubes per sub-box on `threads` threads
+the box's longest side (or cells of size `cell`; neither: default_mesh_cell, i.e. 128 cells, or a
+third of the point spacing for a point cloud's fit), marching cubes per sub-box on `threads` threads
 (0: all cores), vertices projected onto F = 0 -> (V (N, 3), F (M, 3) int32). box (2, 3) defaults
 to f.box; the mesh closes along the box where the body reaches it. Closed, 2-manifold, oriented
 outward.)");

@@ -311,6 +311,7 @@ ImplicitFunction cloud_implicit_function(std::shared_ptr<const CloudImplicit> mo
     }
   };
   f.sign_on_box = [e](const Eigen::AlignedBox3d& B) { return e->sign_on(B); };
+  f.sample_spacing = model->spacing;
   return f;
 }
 

@@ -395,6 +395,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   info.noise = o.noise > 0 ? o.noise : estimate_noise(c.points);
   const double sigma = std::max(info.noise, kSigmaFloor * m.size);
   info.spacing = median_spacing(area);
+  m.spacing = info.spacing;
   if (o.noise_aware || o.acceptance_per_rho > 0)
     info.scan_noise = o.noise > 0 ? o.noise : estimate_scan_noise(c.points);
   const Rule rule = fit_rule(o, sigma, info.scan_noise / info.spacing, c.points.rows());

@@ -75,6 +75,7 @@ IflBlock to_ifl(const CloudImplicit& m, double noise) {
   b.set("size", m.size);
   b.set("support", m.support);
   b.set("noise", noise);
+  b.set("spacing", m.spacing);
   b.set_i64("level", {n}, std::move(level));
   b.set_i64("cell", {n, 3}, std::move(cell));
   b.set_f64("centre", {n, 3}, std::move(centre));
@@ -95,6 +96,12 @@ CloudImplicit cloud_implicit_from_ifl(const IflBlock& b) {
   m.support = b.number("support");
   if (!(m.size > 0) || !(m.support > 0.5))
     b.fail("needs size > 0 and support > 0.5");
+  // optional (files before session 11 lack it): the fitted cloud's point spacing
+  if (b.numbers.count("spacing")) {
+    m.spacing = b.number("spacing");
+    if (!(m.spacing >= 0))
+      b.fail("needs spacing >= 0");
+  }
   const std::vector<std::int64_t>& level = b.i64("level", {-1});
   const long n = static_cast<long>(level.size());
   if (n < 1)

@@ -3,6 +3,7 @@
 #include "interlin/reconstruction/meshing/parallel_for.h"
 #include "iso_block.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -95,6 +96,17 @@ void mark_band(const ImplicitFunction& f, const RegularGrid& grid, const Eigen::
 }
 
 } // namespace
+
+double default_mesh_cell(const ImplicitFunction& f, const Eigen::AlignedBox3d& box,
+                         double cells_per_spacing) {
+  if (box.isEmpty() || !(cells_per_spacing > 0))
+    throw std::invalid_argument("default_mesh_cell: empty box or cells per spacing <= 0");
+  const double longest = box.sizes().maxCoeff();
+  if (!(f.sample_spacing > 0))
+    return longest / ImplicitMeshOptions{}.resolution;
+  constexpr double kFewest = 32, kMost = 1024; // cells along the longest side
+  return std::clamp(f.sample_spacing / cells_per_spacing, longest / kMost, longest / kFewest);
+}
 
 ImplicitFunction clip_to_box(const ImplicitFunction& f, const Eigen::AlignedBox3d& box) {
   if (!f.value)

@@ -58,6 +58,11 @@ TEST_CASE("cloud .ifl: read back exactly, loaded through the registry", "[clouds
     G.gradient(P, g, Dg);
     CHECK(f == g); // bit-identical
     CHECK(Df == Dg);
+    // the cloud's point spacing travels with the model (it sets the default mesh cell)
+    CHECK(fitted->spacing == info.spacing);
+    CHECK(info.spacing > 0);
+    CHECK(F.sample_spacing == info.spacing);
+    CHECK(G.sample_spacing == info.spacing);
     // and the file written again from the read model is the same file
     const CloudImplicit back = cloud_implicit_from_ifl(read_ifl(path));
     CHECK(text(to_ifl(back, info.noise)) == text(to_ifl(*fitted, info.noise)));
@@ -95,4 +100,11 @@ TEST_CASE("cloud .ifl: blocks that break the kind's rules are refused", "[clouds
   b = good;
   b.numbers.erase("version");
   refused(b, "version");
+  b = good;
+  b.numbers["spacing"] = -1;
+  refused(b, "spacing >= 0");
+  // a file written before the spacing was stored: read, spacing unknown (0)
+  b = good;
+  b.numbers.erase("spacing");
+  CHECK(load_ifl_model(b, "x.ifl").sample_spacing == 0);
 }

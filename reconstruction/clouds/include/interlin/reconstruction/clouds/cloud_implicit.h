@@ -62,12 +62,14 @@ struct LocalFit {
 //   support       PU radius / cell diagonal used for every leaf (Ohtake et al.'s alpha); each
 //                 fit's radius is support x its cell's diagonal
 //   fits          the octree leaves; together they tile the root cube
+//   spacing       the median point spacing of the fitted cloud (0: unknown, e.g. an older file)
 struct CloudImplicit {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   double size = 1;
   Eigen::AlignedBox3d box;
   double support = 0.6;
   std::vector<LocalFit> fits;
+  double spacing = 0;
 };
 
 struct CloudFitOptions {
