@@ -12,6 +12,8 @@
 //                     [--cells-per-spacing K] [--depths D,D]
 //                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
 //                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--no-thin-walls]
+// (--resolution: interlin's grid cells along the box's longest side; auto, the default:
+// default_mesh_cell, cells of spacing / K with K = --cells-per-spacing, 2 by default.)
 //                     [--exact-sigmas S,S]
 // (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
 // inspection.)
@@ -83,15 +85,14 @@ struct Method {
   enum Kind { interlin, pcl, open3d, sectioned } kind;
   int depth = 8;      // Poisson octree depth
   int resolution = 0; // interlin: grid cells along the box's longest side; 0: default_mesh_cell
-  double cells_per_spacing = 3; // ... with resolution 0
-  std::string fit;    // interlin: CloudFitOptions changes (--fit), empty for the defaults
+  double cells_per_spacing = 2; // ... with resolution 0
+  std::string fit;              // interlin: CloudFitOptions changes (--fit), empty for the defaults
   std::string label() const {
     if (kind == interlin)
       return "interlin (" +
              (resolution > 0 ? "resolution " + std::to_string(resolution)
                              : "cell spacing / " + fixed(cells_per_spacing)) +
-             ")" +
-             (fit.empty() ? "" : " [" + fit + "]");
+             ")" + (fit.empty() ? "" : " [" + fit + "]");
     if (kind == sectioned)
       return "interlin sectioned (slices -> loft)";
     return std::string(kind == pcl ? "PCL Poisson" : "Open3D Poisson") + " (depth " +
@@ -450,8 +451,8 @@ std::vector<std::string> split(const std::string& s) {
 // or case name is a usage error (one line, exit 2), never a crash or a silently empty run.
 struct Options {
   std::string cases = "all", methods = "all";
-  int points = 100000, resolution = 256, threads = 2;
-  double cells_per_spacing = 3;
+  int points = 100000, resolution = 0, threads = 2; // resolution 0: auto
+  double cells_per_spacing = 2;
   std::vector<int> depths{8, 9};
   std::vector<std::string> fits;         // --fit, one interlin row each
   std::vector<std::string> exact_sigmas; // --exact-sigmas: cases blade-exact-sigma-S
@@ -601,7 +602,9 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  std::cout << "# bench_clouds: points " << points << ", interlin resolution " << resolution
+  std::cout << "# bench_clouds: points " << points << ", interlin "
+            << (resolution > 0 ? "resolution " + std::to_string(resolution)
+                               : "cell spacing / " + fixed(o.cells_per_spacing))
             << ", threads " << threads << "\n";
   std::ostringstream summary;
   summary << "\n| cloud | better Poisson | its Chamfer | its time [s] | interlin Chamfer | "

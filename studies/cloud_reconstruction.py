@@ -32,7 +32,7 @@ CLOUDS = ["blade", "blade-noisy", "blade-hole", "slices", "slices-noisy", "radia
           "uav", "car", "valve", "naca0011_plate", "valve-noisy", "bunny"]
 # --quick: one small blade scan, coarse settings (the smoke test)
 QUICK = dict(clouds=["blade"], points=3000, resolution=48, depths="6")
-FULL = dict(clouds=CLOUDS, points=100000, resolution=256, depths="8,9")
+FULL = dict(clouds=CLOUDS, points=100000, resolution="auto", depths="8,9")
 COLUMNS = ["Chamfer / diag", "Hausdorff / diag", "zero-set Chamfer", "hold-out mean",
            "hold-out max", "time [s]", "peak MB", "vertices"]
 CHAMFER_TARGET = 0.5  # issue 11: Chamfer <= 0.5 x the better Poisson's
@@ -150,10 +150,12 @@ def verdict(summary):
 def write_report(r, settings, threads, results):
     r.text("""Clouds of %d points (blade scans: unstructured, noisy, with a missing patch, in
 planar or radial slices; clouds sampled from the seed R-function models; the Stanford bunny),
-interlin at resolution %d, Poisson at depths %s, %d threads per method. Run by
+interlin meshed at %s, Poisson at depths %s, %d threads per method. Run by
 `bench/bench_clouds` (see docs/benchmarks.md "Point clouds" for the method); times are wall
 times on a shared machine, to be read as same-run ratios.""" % (
-        settings["points"], settings["resolution"], settings["depths"], threads))
+        settings["points"],
+        "the default cell (half the point spacing)" if settings["resolution"] == "auto"
+        else "resolution %d" % settings["resolution"], settings["depths"], threads))
     rows = [[name, method] + values + [error] for name, _, table, _ in results
             for method, values, error in table]
     r.table("methods", ["cloud", "method"] + COLUMNS + ["error"], rows,

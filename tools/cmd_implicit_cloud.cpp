@@ -110,7 +110,8 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
                     : std::string())
             << "\n";
   std::cout << "  noise        sigma = " << fmt(info.noise, 3)
-            << (info.noise_estimated ? " (estimated from the points)" : " (given)") << "\n";
+            << (info.noise_estimated ? " (estimated from the points)" : " (given)")
+            << "; point spacing " << fmt(info.spacing, 4) << "\n";
   std::cout << "  octree       " << info.leaves << " leaves (" << info.two_sheet_leaves
             << " with two sheets, " << info.far_leaves << " far from the points, "
             << info.sign_fixed_leaves << " re-signed by the winding number), depth " << info.depth

@@ -44,7 +44,7 @@ the box: where it reaches the box the mesh closes along the box faces.
 Options:
   -o, --output FILE      output file (repeatable)
   --resolution N         cells along the longest side of the box (default 128; for the
-                         surface of a point cloud's .ifl: cells of a third of the cloud's point
+                         surface of a point cloud's .ifl: cells of half the cloud's point
                          spacing, 32 to 1024 along the longest side)
   --cell H               cell size instead of --resolution
   --box X0,Y0,Z0,X1,Y1,Z1
@@ -147,9 +147,9 @@ void check_grid_limits(const ParsedArgs& a, const Eigen::AlignedBox3d& box,
                        const ImplicitMeshOptions& o) {
   const std::string asked = a.has("cell")         ? "--cell " + a.get("cell")
                             : a.has("resolution") ? "--resolution " + a.get("resolution")
-                            : o.cell > 0          ? "the default cell " + fmt(o.cell, 4)
-                                                  : "the default --resolution " +
-                                                        std::to_string(o.resolution);
+                            : o.cell > 0
+                                ? "the default cell " + fmt(o.cell, 4)
+                                : "the default --resolution " + std::to_string(o.resolution);
   const double n = grid_node_estimate(box, o);
   const long long max_nodes = limit_option(a, "max-grid-nodes", limits::grid_nodes);
   if (n > double(max_nodes))
@@ -318,7 +318,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   progress("reading " + input);
   const ImplicitFunction f = load_implicit(input, mo);
   const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
-  // a surface of a model fitted to points: cells a third of the point spacing by default
+  // a surface of a model fitted to points: cells of half the point spacing by default
   if (!a.has("resolution") && !a.has("cell") && !a.has("volume") && f.sample_spacing > 0)
     o.cell = default_mesh_cell(f, box);
   check_grid(a, box, o);

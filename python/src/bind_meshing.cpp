@@ -267,13 +267,12 @@ void bind_meshing(py::module_& m) {
         return py::make_tuple(std::move(V), std::move(F));
       },
       py::arg("f"), py::arg("resolution") = py::none(), py::arg("cell") = 0.0,
-      py::arg("box") = py::none(),
-      py::arg("subboxes") = Eigen::Vector3i::Zero(), py::arg("threads") = 0,
-      py::arg("project") = true, py::arg("tolerance") = 1e-10,
+      py::arg("box") = py::none(), py::arg("subboxes") = Eigen::Vector3i::Zero(),
+      py::arg("threads") = 0, py::arg("project") = true, py::arg("tolerance") = 1e-10,
       R"(Closed mesh of the body {F > 0} (interlin mesh): a grid with `resolution` cubic cells along
-the box's longest side (or cells of size `cell`; neither: default_mesh_cell, i.e. 128 cells, or a
-third of the point spacing for a point cloud's fit), marching cubes per sub-box on `threads` threads
-(0: all cores), vertices projected onto F = 0 -> (V (N, 3), F (M, 3) int32). box (2, 3) defaults
+the box's longest side (or cells of size `cell`; neither: default_mesh_cell, i.e. 128 cells, or
+cells of half the point spacing for a point cloud's fit), marching cubes per sub-box on
+`threads` threads (0: all cores), vertices projected onto F = 0 -> (V (N, 3), F (M, 3) int32). box (2, 3) defaults
 to f.box; the mesh closes along the box where the body reaches it. Closed, 2-manifold, oriented
 outward.)");
   m.def(

@@ -114,6 +114,32 @@ TEST_CASE("CLI implicit: unstructured clouds -> .ifl through the points, signed,
   }
 }
 
+TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by default",
+          "[cli][implicit][clouds]") {
+  TempDir d("implicitcloudcell");
+  write_cloud(d / "scan.xyz", sample_shape(SampledShape{Shape::sphere}, 3000, 0.002, 44));
+  Run r = run("implicit " + d / "scan.xyz -o " + d / "scan.ifl -q");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  auto number_after = [](const std::string& text, const std::string& key) {
+    const size_t at = text.find(key);
+    REQUIRE(at != std::string::npos);
+    return std::stod(text.substr(at + key.size()));
+  };
+  // 3000 points on the unit sphere: spacing about sqrt(4 pi / 3000) = 0.065
+  const double spacing = number_after(r.out, "point spacing ");
+  CHECK(spacing == Approx(std::sqrt(4 * M_PI / 3000)).epsilon(0.15));
+  r = run("mesh " + d / "scan.ifl -o " + d / "scan.stl -q");
+  REQUIRE(r.status == 0);
+  // both printed with 4 significant digits
+  CHECK(number_after(r.out, "nodes, cell ") == Approx(spacing / 2).epsilon(1e-3));
+  CHECK_THAT(r.out, Catch::Contains(", watertight,"));
+  // an explicit resolution still rules
+  r = run("mesh " + d / "scan.ifl -o " + d / "scan.stl --resolution 20 -q");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("21 x 21 x 21 nodes"));
+}
+
 TEST_CASE("CLI implicit: a sectioned scan -> fitted sections -> the lofted body",
           "[cli][implicit][clouds]") {
   TempDir d("implicitslices");

@@ -208,14 +208,14 @@ TEST_CASE("implicit_mesh: OpenMesh builds the result as a closed half-edge mesh"
   }
 }
 
-TEST_CASE("default_mesh_cell: a third of the sample spacing, 32 to 1024 cells, else 128",
+TEST_CASE("default_mesh_cell: half the sample spacing, 32 to 1024 cells, else 128",
           "[implicit_mesh]") {
   ImplicitFunction f;
   const Eigen::AlignedBox3d box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 1, 0.5));
   CHECK(default_mesh_cell(f, box) == 2.0 / 128); // spacing unknown: the default resolution
   f.sample_spacing = 0.03;
-  CHECK(default_mesh_cell(f, box) == 0.01);
-  CHECK(default_mesh_cell(f, box, 2) == 0.015);
+  CHECK(default_mesh_cell(f, box) == 0.015);
+  CHECK(default_mesh_cell(f, box, 3) == 0.01);
   f.sample_spacing = 1; // a sparse cloud: still 32 cells along the longest side
   CHECK(default_mesh_cell(f, box) == 2.0 / 32);
   f.sample_spacing = 1e-6; // a dense one: at most 1024
