@@ -173,7 +173,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
       for (int j = 0, r = 0; j < n(1); ++j)
         for (int i = 0; i < n(0); ++i, ++r) {
           double& v = vals(r);
-          bad += !std::isfinite(v);
+          bad += !std::isfinite(v) && owns(i, j, kk); // a node on a shared plane counts once
           const long gi = lo(0) + i, gj = lo(1) + j;
           if (grid.outer(gi, gj, gk) && reaches_box(v)) {
             cut += owns(i, j, kk); // a node on a shared plane counts once
