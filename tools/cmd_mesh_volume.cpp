@@ -270,9 +270,13 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
     std::cout << ")\n";
   }
   if (q.inverted > 0)
-    throw std::runtime_error(std::to_string(q.inverted) +
-                             " inverted elements (features thinner than a few cells: refine the "
-                             "grid with --cell or --resolution)");
+    throw std::runtime_error(
+        std::to_string(q.inverted) +
+        (o.boundary == VolumeBoundary::pillow
+             ? " inverted elements (pillows the untangling could not open at sharp edges or "
+               "creases: use --boundary dual or --volume tet)"
+             : " inverted elements (features thinner than a few cells: refine the grid with "
+               "--cell or --resolution)"));
   VolumeMeshFields fields;
   Eigen::VectorXd sj(m.C.rows()), dmin(m.C.rows());
   for (long e = 0; e < m.C.rows(); ++e)

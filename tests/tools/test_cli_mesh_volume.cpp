@@ -185,6 +185,14 @@ TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
   REQUIRE(c != std::string::npos);
   CHECK(std::stod(dual.out.substr(c + 13)) < 10);
   CHECK_THAT(dual.err, Catch::Contains("slivers under held boundary points): use --cell"));
+  // Pillowed hexahedra: every boundary node on F = 0 (the wall is 2 cells thick: one or two node
+  // layers, each face with its own surface points), none inverted.
+  const Run pillow = run(mesh + "hex --cell 0.05 --boundary pillow -q");
+  REQUIRE(pillow.status == 0);
+  CHECK_THAT(pillow.out, Catch::Contains("inverted 0\n"));
+  check_boundary_line(pillow.out);
+  CHECK_THAT(pillow.out, Catch::Contains(" on F = 0 (100 %, max |F| "));
+  CHECK_THAT(pillow.out, Catch::Contains("0 not projected, 0 held"));
   // The clipped grid (default tetrahedra) loses nothing: no coverage line.
   const Run cut = run(mesh + "tet --cell 0.05 -q");
   CHECK(cut.status == 0);

@@ -313,10 +313,13 @@ SidePoints side_points(const RegularGrid& g, const Eigen::VectorXd& S, const std
   return sp;
 }
 
-// The side points projected onto F = 0: along -grad F within a cell when that lands on the
-// component's side of its inside corners ((p - inner) . side > 0: from inside a wall thinner than
-// a cell the gradient may lead to the other face), else along the side direction. Returns the
-// points, and flags those with no root found (left at the roots' mean).
+// The side points projected onto F = 0: along the side direction, then along -grad F, within a
+// cell, then within two, each kept only on the component's side of its inside corners ((p - inner)
+// . side > 0: from inside a wall thinner than a cell the gradient may lead to the other face);
+// last, along -grad F within a cell on either side. The side direction first: the gradient
+// gathers neighbouring cells' points onto creases (impeller at h = 0.25: 28 pillows folded before
+// untangling, 410 with the gradient first). Returns the points, and flags those with no root
+// found (left at the roots' mean).
 Eigen::MatrixXd project_side_points(const ImplicitFunction& f, double h, const SidePoints& sp,
                                     std::vector<char>& missed, int threads) {
   constexpr double kStep = 0.25; // h / 4 steps

@@ -67,16 +67,17 @@ struct PillowedHexahedra {
 // cell); (2) in every cell with an inside node, the outside corners fall into components connected
 // along the cell's edges: one side of the surface each (a wall one node layer thick, or two sheets
 // of the core meeting at the cell's point, gives two); each component's surface point is the mean
-// of the linear roots on the edges from inside corners to it, projected onto F = 0 along -grad F
-// (project_along, within a cell, and on the component's side: its edges' mean direction), else
-// along that mean direction; (3) the cell's core point: its centre when all 8 nodes are inside,
-// else halfway from the mean of its inside nodes to the mean of its surface points; (4) each
-// inside node's core hexahedron has the core points of its 8 cells as corners; (5) each grid edge
-// from an inside node n to an outside node m gets the pillow hexahedron between the core face dual
-// to it (the core points of the 4 cells around the edge) and those cells' surface points of m's
-// component. Conforming: neighbouring pillows of one side share their surface points. The caller
-// untangles and smooths the core points (interior nodes; volume_mesh, VolumeBoundary::pillow).
-// Inputs:  f (value; gradient when available), g, S #g nodes (sample_grid), epsilon >= 0,
+// of the linear roots on the edges from inside corners to it, projected onto F = 0 along those
+// edges' mean direction, else along -grad F (project_along, within a cell, then two; kept on the
+// component's side of its inside corners; a last try along -grad F on either side); (3) the cell's
+// core point: its centre when all 8 nodes are inside, else halfway from the mean of its inside
+// nodes to the mean of its surface points; (4) each inside node's core hexahedron has the core
+// points of its 8 cells as corners; (5) each grid edge from an inside node n to an outside node m
+// gets the pillow hexahedron between the core face dual to it (the core points of the 4 cells
+// around the edge) and those cells' surface points of m's component. Conforming: neighbouring
+// pillows of one side share their surface points. The caller untangles and smooths the core points
+// (interior nodes; volume_mesh, VolumeBoundary::pillow). Inputs:  f (value; gradient when
+// available), g, S #g nodes (sample_grid), epsilon >= 0,
 //          threads (0: all cores)
 // Output:  the mesh (its elements may be inverted before smoothing); boundary_facets(C) are the
 //          pillows' tops

@@ -38,7 +38,7 @@ enum class VolumeBoundary { cut, projected, dual, pillow };
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
   VolumeBoundary boundary = VolumeBoundary::cut; // tetrahedra: cut or projected; hexahedra:
-                                                 // projected (any but dual) or dual
+                                                 // projected (cut means it too), dual or pillow
   Eigen::AlignedBox3d box; // region (the grid covers it); empty: the function's own box
   int resolution = 64;     // cells along the box's longest side (grid_with_resolution) ...
   double cell = 0;         // ... unless a cell size h > 0 is given (grid_with_cell)
@@ -137,8 +137,10 @@ constexpr double kCellsAcrossDualWall = 2;
 // warped grid nodes among them) and keep their boundary fixed in step (4); every smoothing step
 // only accepts node moves that fold no further element corner. The seed's published configurations
 // (margin 0, tetrahedra with the strict rule, hexahedra with the inclusive one) give its counts:
-// 2158 boundary nodes and 4332 facets, 3064 and 3072. Inputs:  f (value; gradient when available,
-// else central differences, for the margin),
+// 2158 boundary nodes and 4332 facets, 3064 and 3072. Hexahedra with o.boundary == dual or pillow
+// replace steps (2)-(3) by dual_hexahedra or pillowed_hexahedra (the latter untangled before step
+// (4): core points free, surface points sliding on F = 0). Inputs:  f (value; gradient when
+// available, else central differences, for the margin),
 //          o (std::invalid_argument for no box, bad resolution/cell, margin outside [0, 1))
 // Output:  the mesh; info optional
 VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o = {},
