@@ -137,6 +137,12 @@ void options_exceed(const std::string& option_and_value, const std::string& what
                    std::to_string(limit) + " (raise it with --" + limit_name + " N)");
 }
 
+void warn_body_reaches_box(long nodes, bool quiet) {
+  if (!quiet && nodes > 0)
+    std::cerr << "warning: the body reaches the box at " << nodes
+              << " grid nodes; the mesh is cut by the box there\n";
+}
+
 void print_written(const std::vector<std::string>& paths) {
   if (paths.empty())
     return;

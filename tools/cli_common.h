@@ -59,6 +59,10 @@ long long limit_option(const ParsedArgs& args, const std::string& name, long lon
 // "  wrote        A, B" on stdout; nothing when `paths` is empty.
 void print_written(const std::vector<std::string>& paths);
 
+// The warning of `interlin mesh`, surface or volume, when the body reaches the box at `nodes` > 0
+// outer grid nodes (ImplicitMeshInfo::clipped, VolumeMeshInfo::clipped); nothing when quiet.
+void warn_body_reaches_box(long nodes, bool quiet);
+
 // `x` with `precision` significant digits, as an ostream prints it.
 std::string fmt(double x, int precision = 4);
 

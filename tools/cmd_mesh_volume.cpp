@@ -62,14 +62,18 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
   }
   if (a.has("boundary")) {
     const bool hex = o.elements == VolumeElements::hexahedra;
-    const std::string b = hex ? parse_choice("boundary", a.get("boundary"), {"projected", "dual"})
-                              : parse_choice("boundary", a.get("boundary"), {"cut", "projected"});
+    const std::string b =
+        hex ? parse_choice("boundary", a.get("boundary"), {"projected", "dual", "pillow"})
+            : parse_choice("boundary", a.get("boundary"), {"cut", "projected"});
     o.boundary = b == "cut"         ? VolumeBoundary::cut
                  : b == "projected" ? VolumeBoundary::projected
-                                    : VolumeBoundary::dual;
+                 : b == "dual"      ? VolumeBoundary::dual
+                                    : VolumeBoundary::pillow;
   }
-  if (a.has("margin") && o.boundary == VolumeBoundary::dual)
-    throw UsageError("--margin applies to the projected layer, not --boundary dual");
+  if (a.has("margin") &&
+      (o.boundary == VolumeBoundary::dual || o.boundary == VolumeBoundary::pillow))
+    throw UsageError("--margin applies to the projected layer, not --boundary " +
+                     a.get("boundary"));
   if (a.has("margin") && o.elements == VolumeElements::tetrahedra &&
       o.boundary == VolumeBoundary::cut)
     throw UsageError("--margin applies to the projected layer (--boundary projected or --volume "
@@ -170,8 +174,8 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
   std::cout << ", inverted " << q.inverted << "\n";
   std::cout << "  boundary     " << boundary_nodes << " nodes, " << on_zero << " on F = 0 ("
             << fmt(boundary_nodes > 0 ? 100.0 * double(on_zero) / double(boundary_nodes) : 0, 3)
-            << " %, max |F| " << fmt(info.max_boundary_f, 3) << "), " << info.unprojected
-            << " not projected, " << info.held
+            << (on_zero > 0 ? " %, max |F| " + fmt(info.max_boundary_f, 3) : std::string(" %"))
+            << "), " << info.unprojected << " not projected, " << info.held
             << " held short of it to keep their elements valid\n";
   std::cout << "  geometry     volume " << fmt(q.volume, 7) << "\n";
   if (info.coverage.body > 0)
@@ -192,21 +196,16 @@ double two_digits_down(double x) {
 std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions& o) {
   const bool tets = o.elements == VolumeElements::tetrahedra;
   return "walls about " + fmt(info.coverage.thickness(), 3) +
-         (o.boundary == VolumeBoundary::dual ? " thick (walls with no grid node, slivers under "
-                                               "held boundary points)"
-                                             : " thick have no inner cell under the boundary "
-                                               "layer") +
+         (o.boundary == VolumeBoundary::dual || o.boundary == VolumeBoundary::pillow
+              ? " thick (walls with no grid node, slivers under "
+                "held boundary points)"
+              : " thick have no inner cell under the boundary "
+                "layer") +
          ": use --cell " + fmt(two_digits_down(info.suggested_cell), 2) + " or smaller, or " +
          (tets ? "--boundary cut" : "--volume tet");
 }
 
 } // namespace
-
-void warn_body_reaches_box(long nodes, bool quiet) {
-  if (!quiet && nodes > 0)
-    std::cerr << "warning: the body reaches the box at " << nodes
-              << " grid nodes; the mesh is cut by the box there\n";
-}
 
 bool volume_output_ok(const std::string& path) {
   return is_volume_mesh_path(path) || surface_output(path) || lower_extension(path) == ".png";
@@ -271,9 +270,13 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
     std::cout << ")\n";
   }
   if (q.inverted > 0)
-    throw std::runtime_error(std::to_string(q.inverted) +
-                             " inverted elements (features thinner than a few cells: refine the "
-                             "grid with --cell or --resolution)");
+    throw std::runtime_error(
+        std::to_string(q.inverted) +
+        (o.boundary == VolumeBoundary::pillow
+             ? " inverted elements (pillows the untangling could not open at sharp edges or "
+               "creases: use --boundary dual or --volume tet)"
+             : " inverted elements (features thinner than a few cells: refine the grid with "
+               "--cell or --resolution)"));
   VolumeMeshFields fields;
   Eigen::VectorXd sj(m.C.rows()), dmin(m.C.rows());
   for (long e = 0; e < m.C.rows(); ++e)

@@ -35,10 +35,6 @@ bool volume_output_ok(const std::string& path);
 // --adapt, --adapt-delta, --adapt-var, --max-elements) for the parser.
 std::vector<OptionSpec> volume_options();
 
-// The warning of `interlin mesh`, surface or volume, when the body reaches the box at `nodes` > 0
-// outer grid nodes (ImplicitMeshInfo::clipped, VolumeMeshInfo::clipped); nothing when quiet.
-void warn_body_reaches_box(long nodes, bool quiet);
-
 // Parses the volume options, meshes, prints the summary, writes the outputs (appending each to
 // `written`). Throws UsageError for bad options, InputError for a model without a body in the
 // box, std::runtime_error for a mesh that fails its checks (inverted elements).

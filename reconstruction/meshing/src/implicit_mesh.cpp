@@ -253,7 +253,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
             continue;
           }
           v = F(q);
-          bad += !std::isfinite(v);
+          bad += !std::isfinite(v) && owns(i, j, kk); // a node on a shared plane counts once
           const long gi = lo(0) + i, gj = lo(1) + j;
           if (grid.outer(gi, gj, gk) && reaches_box(v)) {
             cut += owns(i, j, kk); // a node on a shared plane counts once

@@ -141,8 +141,20 @@ TEST_CASE("implicit_mesh: NaN and infinite values are outside (+inf inside), sti
   const test::CheckedMesh m = test::checked_mesh(f, test::at_resolution(40));
   CHECK(m.report.watertight());
   CHECK(m.report.components == 2); // the NaN slab splits the ball
-  CHECK(m.info.nonfinite > 0);
   CHECK(m.V.allFinite());
+  // Each grid node with a non-finite value counted once, whatever the sub-boxes (nodes on their
+  // shared planes are sampled twice).
+  const RegularGrid& g = m.info.grid;
+  long expected = 0;
+  Eigen::VectorXd S;
+  sample_grid(f, g, S, 1);
+  for (long n = 0; n < S.size(); ++n)
+    expected += !std::isfinite(S(n));
+  REQUIRE(expected > 0);
+  CHECK(m.info.nonfinite == expected);
+  ImplicitMeshOptions o = test::at_resolution(40);
+  o.subboxes = Eigen::Array3i(3, 4, 5);
+  CHECK(test::checked_mesh(f, o).info.nonfinite == expected);
 }
 
 TEST_CASE("implicit_mesh: grid, box and option handling", "[implicit]") {

@@ -379,7 +379,20 @@ TEST_CASE("volume_mesh: where the body reaches the box, counted as implicit_mesh
     volume_mesh(f, o, &info);
     CHECK(info.clipped == 0);
     o.box = cut;
-    volume_mesh(f, o, &info);
+    const VolumeMesh m = volume_mesh(f, o, &info);
     CHECK(info.clipped == expected);
+    // The boundary nodes on the cut face z = 0 (tetrahedra: the grid's nodes there; the projected
+    // layer holds the copies it cannot project) lie inside the ball, off F = 0 (F = 1 - r^2 >
+    // 1e-6 h |grad F| unless r is within about 1e-6 h of 1): not counted on F = 0.
+    long on_box = 0, boundary = 0;
+    for (long v = 0; v < m.V.rows(); ++v)
+      if (m.boundary[size_t(v)]) {
+        ++boundary;
+        on_box += std::abs(m.V(v, 2)) < 1e-12 && m.V.row(v).squaredNorm() < 1 - 1e-6;
+      }
+    if (e == VolumeElements::tetrahedra)
+      REQUIRE(on_box > 0);
+    CHECK(info.on_zero <= boundary - on_box);
+    CHECK(info.on_zero >= boundary - on_box - info.held - info.unprojected);
   }
 }

@@ -46,4 +46,43 @@ struct DualHexahedra {
 DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
                              const Eigen::VectorXd& S, double epsilon, int threads = 0);
 
+struct PillowedHexahedra {
+  Eigen::MatrixXd V;          // #V by 3: one core point per cell of g with an inside node (cell
+                              // order), then the surface points
+  Eigen::MatrixXi C;          // #C by 8 hexahedra (VTK order): the core (one per inside node),
+                              // then the pillow layer (one per inside-outside grid edge)
+  std::vector<char> boundary; // #V: a surface point (the pillow layer's top)
+  std::vector<char> missed;   // #V: a surface point whose projection found no root (left at the
+                              // linear roots' mean: the box, or features thinner than the grid)
+  long core = 0;              // core hexahedra (the first rows of C)
+  long split = 0;             // cells with more than one surface point (one per side)
+};
+
+// Dual hexahedra with a buffer layer (pillowing; Mitchell & Tautges 1995, "Pillowing doublets:
+// refining a mesh to ensure that faces share at most one edge", and the boundary layer of Zhang &
+// Bajaj 2006 §3): a core of dual hexahedra none of whose points is on F = 0, and one hexahedron
+// between each boundary quadrilateral of the core and its image on F = 0, so every boundary node
+// is a surface point and no element has more than one face on the surface.
+// Steps: (1) inside nodes are S > epsilon, the grid's outer layer excluded (pad the grid by a
+// cell); (2) in every cell with an inside node, the outside corners fall into components connected
+// along the cell's edges: one side of the surface each (a wall one node layer thick, or two sheets
+// of the core meeting at the cell's point, gives two); each component's surface point is the mean
+// of the linear roots on the edges from inside corners to it, projected onto F = 0 along those
+// edges' mean direction, else along -grad F (project_along, within a cell, then two; kept on the
+// component's side of its inside corners; a last try along -grad F on either side); (3) the cell's
+// core point: its centre when all 8 nodes are inside, else halfway from the mean of its inside
+// nodes to the mean of its surface points; (4) each inside node's core hexahedron has the core
+// points of its 8 cells as corners; (5) each grid edge from an inside node n to an outside node m
+// gets the pillow hexahedron between the core face dual to it (the core points of the 4 cells
+// around the edge) and those cells' surface points of m's component. Conforming: neighbouring
+// pillows of one side share their surface points. The caller untangles and smooths the core points
+// (interior nodes; volume_mesh, VolumeBoundary::pillow). Inputs:  f (value; gradient when
+// available), g, S #g nodes (sample_grid), epsilon >= 0,
+//          threads (0: all cores)
+// Output:  the mesh (its elements may be inverted before smoothing); boundary_facets(C) are the
+//          pillows' tops
+// See also: dual_hexahedra, volume_mesh
+PillowedHexahedra pillowed_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
+                                     const Eigen::VectorXd& S, double epsilon, int threads = 0);
+
 } // namespace interlin

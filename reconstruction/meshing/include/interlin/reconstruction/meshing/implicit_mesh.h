@@ -42,8 +42,8 @@ struct ImplicitMeshInfo {
   Eigen::Array3i subboxes = Eigen::Array3i::Ones();
   long samples = 0; // function values sampled (nodes on shared planes count twice)
   long projection_evaluations = 0;
-  long nonfinite = 0; // sampled values that were NaN or infinite (treated as outside,
-                      // +inf as inside)
+  long nonfinite = 0; // grid nodes whose value was NaN or infinite (treated as outside, +inf
+                      // as inside), each once
   long clipped = 0;   // outer grid nodes where the body reaches the box (reaches_box), each once
   long skipped = 0;   // sub-boxes not sampled: f.sign_on_box gave them one sign (narrow band;
                       // within the others, blocks down to 4 cells are skipped the same way)

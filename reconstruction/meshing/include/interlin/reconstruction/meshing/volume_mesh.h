@@ -29,13 +29,16 @@ enum class VolumeElements { tetrahedra, hexahedra };
 // VolumeMeshInfo::held, and walls without inner cells are lost). dual (hexahedra only): one
 // hexahedron per inside grid node, its corners the points of the 8 cells around it, on F = 0 for
 // cells cut by the surface (dual_hexahedra, Zhang & Bajaj 2006): walls down to one node layer
-// keep their volume, each side on its own cells' points.
-enum class VolumeBoundary { cut, projected, dual };
+// keep their volume, each side on its own cells' points. pillow (hexahedra only): the dual
+// hexahedra as a core inside the body and one layer of hexahedra between its boundary and F = 0
+// (pillowed_hexahedra; the surface points split by side where a wall is one node layer thick):
+// every boundary node on F = 0.
+enum class VolumeBoundary { cut, projected, dual, pillow };
 
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
   VolumeBoundary boundary = VolumeBoundary::cut; // tetrahedra: cut or projected; hexahedra:
-                                                 // projected (any but dual) or dual
+                                                 // projected (cut means it too), dual or pillow
   Eigen::AlignedBox3d box; // region (the grid covers it); empty: the function's own box
   int resolution = 64;     // cells along the box's longest side (grid_with_resolution) ...
   double cell = 0;         // ... unless a cell size h > 0 is given (grid_with_cell)
@@ -65,22 +68,21 @@ struct VolumeMesh {
 
 struct VolumeMeshInfo {
   RegularGrid grid;
-  long inside_nodes = 0;     // grid nodes inside by the rule
-  long dropped_nodes = 0;    // of those, nearer to F = 0 than the margin
-  long removed_cells = 0;    // background cells removed by the touching-configuration cleanup and
-                             // (margin > 0) where the inner cells were one cell thin
-  long inner_cells = 0;      // background cells kept (the elements copied unchanged)
-  long layer_elements = 0;   // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
-                             // the pieces of the cut background tetrahedra)
-  long unprojected = 0;      // boundary nodes whose projection found no sign change (cut: 0)
-  long held = 0;             // projected layer: boundary nodes held short of F = 0 so that no
-                             // element folds (cut: 0)
-  double max_boundary_f = 0; // largest |F| at a boundary node not held
-  // Boundary nodes on F = 0: neither held nor unprojected (the projected layer's unprojected nodes
-  // stay on their grid nodes and are held with their zero-height elements; dual hexahedra hold
-  // them explicitly); max_boundary_f is over these. Where the body reaches the box (clipped > 0)
-  // the nodes on the box faces are counted although off F = 0.
+  long inside_nodes = 0;   // grid nodes inside by the rule
+  long dropped_nodes = 0;  // of those, nearer to F = 0 than the margin
+  long removed_cells = 0;  // background cells removed by the touching-configuration cleanup and
+                           // (margin > 0) where the inner cells were one cell thin
+  long inner_cells = 0;    // background cells kept (the elements copied unchanged)
+  long layer_elements = 0; // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
+                           // the pieces of the cut background tetrahedra)
+  long unprojected = 0;    // boundary nodes whose projection found no sign change (cut: 0)
+  long held = 0;           // projected layer: boundary nodes held short of F = 0 so that no
+                           // element folds (cut: 0)
+  // Boundary nodes on F = 0: neither held nor unprojected, and |F| <= 1e-6 h |grad F| there (the
+  // nodes on the box faces where the body reaches the box are not); max_boundary_f is the largest
+  // |F| over them (0 when there is none).
   long on_zero = 0;
+  double max_boundary_f = 0;
   long clipped = 0; // outer grid nodes where the body reaches the box (reaches_box): the mesh is
                     // cut by the box there, its boundary nodes on the box faces off F = 0
   VolumeSmoothingReport smoothing;
@@ -135,8 +137,10 @@ constexpr double kCellsAcrossDualWall = 2;
 // warped grid nodes among them) and keep their boundary fixed in step (4); every smoothing step
 // only accepts node moves that fold no further element corner. The seed's published configurations
 // (margin 0, tetrahedra with the strict rule, hexahedra with the inclusive one) give its counts:
-// 2158 boundary nodes and 4332 facets, 3064 and 3072. Inputs:  f (value; gradient when available,
-// else central differences, for the margin),
+// 2158 boundary nodes and 4332 facets, 3064 and 3072. Hexahedra with o.boundary == dual or pillow
+// replace steps (2)-(3) by dual_hexahedra or pillowed_hexahedra (the latter untangled before step
+// (4): core points free, surface points sliding on F = 0). Inputs:  f (value; gradient when
+// available, else central differences, for the margin),
 //          o (std::invalid_argument for no box, bad resolution/cell, margin outside [0, 1))
 // Output:  the mesh; info optional
 VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o = {},
