@@ -184,7 +184,8 @@ void bind_volume_meshes(py::module_& m) {
             "elements");
         o.boundary = choice<VolumeBoundary>({{"cut", VolumeBoundary::cut},
                                              {"projected", VolumeBoundary::projected},
-                                             {"dual", VolumeBoundary::dual}},
+                                             {"dual", VolumeBoundary::dual},
+                                             {"pillow", VolumeBoundary::pillow}},
                                             boundary, "boundary");
         o.rule = choice<ZeroRule>(
             {{"strict", ZeroRule::strict}, {"inclusive", ZeroRule::inclusive}}, rule, "rule");
@@ -213,7 +214,9 @@ void bind_volume_meshes(py::module_& m) {
 facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetrahedra) "cut" (the
 grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer, as hexahedra by default);
 hexahedra "dual": one per inside grid node, corners at the cells' points on F = 0 (Zhang & Bajaj
-2006: walls one node layer thick kept; "tet" with "dual" raises ValueError);
+2006: walls one node layer thick kept; "tet" with "dual" raises ValueError); "pillow": dual
+hexahedra inside and one pillow layer out to F = 0, every boundary node on F = 0 (Mitchell &
+Tautges 1995), but folds may remain at sharp edges: check volume_quality(V, C)["inverted"];
 rule "strict" (F > eps) or "inclusive" (F >= -eps) for the inside nodes; margin: inside nodes
 within margin x cell of F = 0 count as outside (no thin layer elements). info["held"]: layer
 nodes held short of F = 0 so that no element folds (max_boundary_f is over the others,
