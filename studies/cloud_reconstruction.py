@@ -18,6 +18,9 @@ Each cloud's bench output is kept in OUT_DIR/raw/CLOUD.txt (first line: the benc
 
 Usage: python3 studies/cloud_reconstruction.py [OUT_DIR] [--quick] [-q] [--threads T]
                                                 [--bench build/bench/bench_clouds] [--resume]
+                                                [--resolution R|auto]
+(--resolution: interlin's mesh grid, cells along the longest side; auto, the default: cells of
+half the point spacing, as interlin mesh makes them. The committed report was made at 256.)
        mpirun -n 2 python3 studies/cloud_reconstruction.py OUT_DIR --threads 1
 """
 import math
@@ -114,13 +117,22 @@ def main():
         p.add_argument("--bench", default=os.environ.get("INTERLIN_BENCH_CLOUDS", default_bench),
                        help="the bench_clouds binary (default %(default)s)"),
         p.add_argument("--resume", action="store_true",
-                       help="reuse the clouds in OUT_DIR/raw run with the same arguments")))
+                       help="reuse the clouds in OUT_DIR/raw run with the same arguments"),
+        p.add_argument("--resolution", default=None,
+                       help="interlin's mesh: cells along the longest side, or auto (full "
+                            "study's default: half the point spacing)")))
     if not os.access(args.bench, os.X_OK):
         raise StudyError("%s: not found; build it (README command 2 builds bench/ when PCL's "
                          "surface module, Open3D and CGAL are installed)" % args.bench)
     study = Study("cloud_reconstruction", "Point cloud reconstruction against screened Poisson",
                   args)
-    settings = QUICK if args.quick else FULL
+    settings = dict(QUICK if args.quick else FULL)
+    if args.resolution is not None:
+        if args.resolution != "auto" and not args.resolution.isdigit():
+            raise StudyError("--resolution: expected a number of cells or auto, got '%s'"
+                             % args.resolution)
+        settings["resolution"] = args.resolution if args.resolution == "auto" else int(
+            args.resolution)
     threads = args.threads or max(1, (os.cpu_count() or 1) // study.size)
     raw_dir = folder(os.path.join(args.out, "raw"))
     results = study.map(lambda key: run_cloud(args.bench, key, settings, threads, raw_dir,
@@ -150,7 +162,7 @@ def verdict(summary):
 def write_report(r, settings, threads, results):
     r.text("""Clouds of %d points (blade scans: unstructured, noisy, with a missing patch, in
 planar or radial slices; clouds sampled from the seed R-function models; the Stanford bunny),
-interlin meshed at %s, Poisson at depths %s, %d threads per method. Run by
+interlin at %s, Poisson at depths %s, %d threads per method. Run by
 `bench/bench_clouds` (see docs/benchmarks.md "Point clouds" for the method); times are wall
 times on a shared machine, to be read as same-run ratios.""" % (
         settings["points"],
