@@ -458,17 +458,26 @@ void measure_coverage(const ImplicitFunction& f, const RegularGrid& g, const Eig
                          kCellsAcrossWall, kKeptWallCells);
 }
 
-// Hexahedra dual to the inside nodes of g padded by a cell (dual_hexahedra), nodes on internal zero
-// sheets inside; then step (4) of volume_mesh with the held points fixed and the coverage.
-VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const VolumeMeshOptions& o,
-                     VolumeMeshInfo& out) {
-  RegularGrid g = g0; // a layer of cells around the box: every inside node gets its 8 cells
+// The grid g0 padded by a layer of cells around the box (every inside node gets its 8 cells) into
+// g, sampled, with nodes on internal zero sheets inside (dual and pillowed hexahedra).
+Eigen::VectorXd padded_samples(const ImplicitFunction& f, const RegularGrid& g0,
+                               const VolumeMeshOptions& o, VolumeMeshInfo& out, RegularGrid& g) {
+  g = g0;
   g.origin -= g.spacing;
   g.nodes += 2;
   out.grid = g;
   Eigen::VectorXd S = sampled_grid(f, g, o, out);
   fill_zero_sheets(g, S, o.epsilon, o.threads);
   out.inside_nodes = (S.array() > o.epsilon).count();
+  return S;
+}
+
+// Hexahedra dual to the inside nodes of g padded by a cell (dual_hexahedra), nodes on internal zero
+// sheets inside; then step (4) of volume_mesh with the held points fixed and the coverage.
+VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const VolumeMeshOptions& o,
+                     VolumeMeshInfo& out) {
+  RegularGrid g;
+  const Eigen::VectorXd S = padded_samples(f, g0, o, out, g);
   if (o.progress)
     o.progress("hexahedra dual to " + std::to_string(out.inside_nodes) + " inside nodes");
   DualHexahedra d = dual_hexahedra(f, g, S, o.epsilon, o.threads);
@@ -594,13 +603,8 @@ long untangle_pillows(const ImplicitFunction& f, double h, const std::vector<cha
 // with the unprojected points held, then the coverage.
 VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const VolumeMeshOptions& o,
                        VolumeMeshInfo& out) {
-  RegularGrid g = g0; // a layer of cells around the box: every inside node gets its 8 cells
-  g.origin -= g.spacing;
-  g.nodes += 2;
-  out.grid = g;
-  Eigen::VectorXd S = sampled_grid(f, g, o, out);
-  fill_zero_sheets(g, S, o.epsilon, o.threads);
-  out.inside_nodes = (S.array() > o.epsilon).count();
+  RegularGrid g;
+  const Eigen::VectorXd S = padded_samples(f, g0, o, out, g);
   if (o.progress)
     o.progress("dual hexahedra of " + std::to_string(out.inside_nodes) +
                " inside nodes and their pillow layer");
