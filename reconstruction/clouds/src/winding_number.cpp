@@ -14,6 +14,14 @@ namespace {
 constexpr double kFarRatio = 2.0;
 // Points per cluster on average: clusters of a surface in a grid of G^3 cells number about G^2.
 constexpr double kClusterPoints = 16;
+// Cells per super-cluster along each axis: a query far from most of the surface costs one term
+// per super-cluster instead of one per cell (about 6,000 cells for 100,000 points).
+constexpr int kSuperCells = 4;
+// ... counted as one dipole beyond this multiple of their radius: at 2, as the cells, the sum's
+// error against the direct sum grew from the one-level tree's 0.008 to 0.022 on a 20,000-point
+// sphere (test_winding_number.cpp), at 3 0.013, at 4 0.010, all three as fast (valve, 100,000
+// points: the fit 3.6 s -> 2.1 s, the same model).
+constexpr double kSuperFarRatio = 4.0;
 
 } // namespace
 
@@ -33,18 +41,27 @@ WindingNumber::WindingNumber(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& 
   const double side = std::max((hi - lo).maxCoeff(), 1e-300);
   const int G = std::clamp(int(std::sqrt(double(P.rows()) / kClusterPoints)), 1, 256);
   const double h = side / G * (1 + 1e-12);
+  // keyed by (super-cluster, cell): a super-cluster's cells are consecutive
+  const long G3 = long(G) * G * G, S = (G + kSuperCells - 1) / kSuperCells;
   std::map<long, std::vector<Eigen::Index>> cells;
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     const Eigen::Array3i c = ((P.row(i).transpose() - lo) / h).array().floor().cast<int>();
-    cells[(long(c(2)) * G + c(1)) * G + c(0)].push_back(i);
+    const Eigen::Array3i s = c / kSuperCells;
+    cells[((long(s(2)) * S + s(1)) * S + s(0)) * G3 + (long(c(2)) * G + c(1)) * G + c(0)].push_back(
+        i);
   }
   P_.resize(P.rows(), 3);
   D_.resize(P.rows(), 3);
   int row = 0;
+  long super_key = -1;
   for (const auto& [key, members] : cells) {
+    if (key / G3 != super_key) {
+      super_key = key / G3;
+      supers_.push_back({});
+      supers_.back().begin = static_cast<int>(clusters_.size());
+    }
     Cluster c;
     c.begin = row;
-    double sa = 0;
     c.centroid.setZero();
     c.dipole.setZero();
     for (Eigen::Index i : members) {
@@ -52,17 +69,33 @@ WindingNumber::WindingNumber(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& 
       D_.row(row) = area(i) * N.row(i);
       c.centroid += area(i) * P.row(i).transpose();
       c.dipole += D_.row(row).transpose();
-      sa += area(i);
+      c.area += area(i);
       ++row;
     }
     c.end = row;
     c.centroid =
-        sa > 0
-            ? Eigen::Vector3d(c.centroid / sa)
+        c.area > 0
+            ? Eigen::Vector3d(c.centroid / c.area)
             : Eigen::Vector3d(P_.middleRows(c.begin, c.end - c.begin).colwise().mean().transpose());
     for (int r = c.begin; r < c.end; ++r)
       c.radius = std::max(c.radius, (P_.row(r).transpose() - c.centroid).norm());
     clusters_.push_back(c);
+    supers_.back().end = static_cast<int>(clusters_.size());
+  }
+  for (Cluster& s : supers_) { // the clusters' dipoles at their area centroid
+    s.centroid.setZero();
+    s.dipole.setZero();
+    for (int k = s.begin; k < s.end; ++k) {
+      const Cluster& c = clusters_[size_t(k)];
+      s.centroid += c.area * c.centroid;
+      s.dipole += c.dipole;
+      s.area += c.area;
+    }
+    s.centroid =
+        s.area > 0 ? Eigen::Vector3d(s.centroid / s.area) : clusters_[size_t(s.begin)].centroid;
+    for (int k = s.begin; k < s.end; ++k) // a bound: every member lies within it
+      s.radius = std::max(s.radius, (clusters_[size_t(k)].centroid - s.centroid).norm() +
+                                        clusters_[size_t(k)].radius);
   }
 }
 
@@ -74,13 +107,23 @@ double WindingNumber::operator()(const Eigen::Vector3d& q) const {
     if (l2 > 0)
       w += d.dot(r) / (l2 * std::sqrt(l2));
   };
-  for (const Cluster& c : clusters_) {
-    if ((c.centroid - q).squaredNorm() > std::pow(kFarRatio * c.radius, 2)) {
-      term(c.centroid, c.dipole);
+  auto far = [&](const Cluster& c, double ratio) {
+    return (c.centroid - q).squaredNorm() > std::pow(ratio * c.radius, 2);
+  };
+  for (const Cluster& s : supers_) {
+    if (far(s, kSuperFarRatio)) {
+      term(s.centroid, s.dipole);
       continue;
     }
-    for (int r = c.begin; r < c.end; ++r)
-      term(P_.row(r).transpose(), D_.row(r).transpose());
+    for (int k = s.begin; k < s.end; ++k) {
+      const Cluster& c = clusters_[size_t(k)];
+      if (far(c, kFarRatio)) {
+        term(c.centroid, c.dipole);
+        continue;
+      }
+      for (int r = c.begin; r < c.end; ++r)
+        term(P_.row(r).transpose(), D_.row(r).transpose());
+    }
   }
   return w / (4 * M_PI);
 }

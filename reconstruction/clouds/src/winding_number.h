@@ -9,7 +9,8 @@
 // a closed cloud with outward normals, 0 outside, whatever the shape (thin walls included, where
 // the nearest normals alone cannot tell the side). Clusters of a uniform grid farther than
 // kFarRatio times their radius count as one dipole (sum of a_i n_i at their area centroid),
-// Barill et al.'s first-order tree expansion on a one-level tree.
+// Barill et al.'s first-order tree expansion on a two-level tree (clusters of 4 x 4 x 4 cells,
+// then the cells).
 
 #include <Eigen/Core>
 #include <vector>
@@ -24,11 +25,14 @@ public:
 
 private:
   struct Cluster {
-    Eigen::Vector3d centroid, dipole; // area centroid, sum a_i n_i
-    double radius = 0;                // largest distance of a member from the centroid
-    int begin = 0, end = 0;           // members: rows [begin, end) of P_, D_
+    // area centroid, sum a_i n_i
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), dipole = Eigen::Vector3d::Zero();
+    double area = 0, radius = 0; // sum a_i; largest distance of a member from the centroid
+    int begin = 0, end = 0;      // members: rows [begin, end) of P_, D_ (of clusters_ for
+                                 // a super-cluster)
   };
-  std::vector<Cluster> clusters_;
+  std::vector<Cluster> clusters_; // grouped by super-cluster
+  std::vector<Cluster> supers_;
   Eigen::MatrixX3d P_, D_; // points and a_i n_i, grouped by cluster
 };
 
