@@ -123,10 +123,11 @@ public:
         return true;
       seen[size_t(j)] = stamp;
       const Ball& b = balls_[static_cast<size_t>(j)];
-      if (C.squaredExteriorDistance(Vector3d(b.x, b.y, b.z)) >= b.r2)
+      const Vector3d c(b.x, b.y, b.z);
+      if (C.squaredExteriorDistance(c) >= b.r2)
         return true; // the ball misses C: its weight is 0 there
       // the fit's weight is 0 outside its ball: its sign matters on C and the ball's cube only
-      const Vector3d c(b.x, b.y, b.z), r = Vector3d::Constant(std::sqrt(b.r2));
+      const Vector3d r = Vector3d::Constant(std::sqrt(b.r2));
       const Eigen::AlignedBox3d D = C.intersection(Eigen::AlignedBox3d(c - r, c + r));
       const int s = detail::fit_sign_on_box(m_->fits[static_cast<size_t>(j)], D);
       if (s == 0 || (sign != 0 && s != sign))

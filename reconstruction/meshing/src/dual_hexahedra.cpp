@@ -39,6 +39,17 @@ constexpr int kCubeEdge[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}
 // VTK hexahedron corner j -> the cube corner (a, b, c) as a + 2 b + 4 c.
 constexpr int kVtkCorner[8] = {0, 1, 3, 2, 4, 5, 7, 6};
 
+// The grid node of cube corner c = a + 2 b + 4 c, as an offset from the cell's lower corner node
+// (nx nodes per row, slice per z-plane).
+long corner_offset(int c, long nx, long slice) {
+  return (c & 1) + ((c >> 1) & 1) * nx + (c >> 2) * slice;
+}
+
+// The position of cube corner c of the cell whose lower corner is p0.
+Eigen::Vector3d corner_point(const RegularGrid& g, const Eigen::Vector3d& p0, int c) {
+  return p0 + Eigen::Vector3d(c & 1, (c >> 1) & 1, c >> 2).cwiseProduct(g.spacing);
+}
+
 // The cells (lower corner node indices) with an inside node, in cell order, and per inside node of
 // the grid's interior its hexahedron's cells.
 struct DualCells {
@@ -65,15 +76,14 @@ DualCells dual_cells(const RegularGrid& g, const std::vector<char>& in, int thre
   const long slice = nx * ny;
   for (long n : inside)
     for (int c = 0; c < 8; ++c)
-      d.cell.push_back(n - 1 - nx - slice + (c & 1) + ((c >> 1) & 1) * nx + (c >> 2) * slice);
+      d.cell.push_back(n - 1 - nx - slice + corner_offset(c, nx, slice));
   std::sort(d.cell.begin(), d.cell.end());
   d.cell.erase(std::unique(d.cell.begin(), d.cell.end()), d.cell.end());
   d.C.resize(long(inside.size()), 8);
   for (size_t e = 0; e < inside.size(); ++e)
     for (int j = 0; j < 8; ++j) {
       const int c = kVtkCorner[j];
-      const long cell =
-          inside[e] - 1 - nx - slice + (c & 1) + ((c >> 1) & 1) * nx + (c >> 2) * slice;
+      const long cell = inside[e] - 1 - nx - slice + corner_offset(c, nx, slice);
       d.C(long(e), j) = int(std::lower_bound(d.cell.begin(), d.cell.end(), cell) - d.cell.begin());
     }
   return d;
@@ -93,11 +103,8 @@ void cell_points(const RegularGrid& g, const Eigen::VectorXd& S, const std::vect
     const Eigen::Vector3d p0 = g.point(base % nx, (base / nx) % g.nodes(1), base / slice);
     long node[8];
     for (int c = 0; c < 8; ++c)
-      node[c] = base + (c & 1) + ((c >> 1) & 1) * nx + (c >> 2) * slice;
-    auto corner = [&](int c) {
-      return Eigen::Vector3d(p0 +
-                             Eigen::Vector3d(c & 1, (c >> 1) & 1, c >> 2).cwiseProduct(g.spacing));
-    };
+      node[c] = base + corner_offset(c, nx, slice);
+    auto corner = [&](int c) { return corner_point(g, p0, c); };
     centre.row(r) = (p0 + 0.5 * g.spacing).transpose();
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     int roots = 0;
@@ -270,9 +277,7 @@ SidePoints side_points(const RegularGrid& g, const Eigen::VectorXd& S, const std
   for (long r = 0; r < n; ++r) {
     unsigned inside = 0;
     for (int c = 0; c < 8; ++c)
-      inside |=
-          unsigned(in[size_t(cell[size_t(r)] + (c & 1) + ((c >> 1) & 1) * nx + (c >> 2) * slice)])
-          << c;
+      inside |= unsigned(in[size_t(cell[size_t(r)] + corner_offset(c, nx, slice))]) << c;
     sp.start[size_t(r + 1)] = sp.start[size_t(r)] + outside_components(inside, sp.label[size_t(r)]);
   }
   const long points = sp.start.back();
@@ -284,13 +289,9 @@ SidePoints side_points(const RegularGrid& g, const Eigen::VectorXd& S, const std
     if (sp.start[size_t(r)] == sp.start[size_t(r + 1)])
       continue;
     const long base = cell[size_t(r)];
-    const Eigen::RowVector3d p0 =
-        g.point(base % nx, (base / nx) % g.nodes(1), base / slice).transpose();
-    auto corner = [&](int c) {
-      return Eigen::RowVector3d(
-          p0 + Eigen::RowVector3d(c & 1, (c >> 1) & 1, c >> 2).cwiseProduct(g.spacing.transpose()));
-    };
-    auto node = [&](int c) { return base + (c & 1) + ((c >> 1) & 1) * nx + (c >> 2) * slice; };
+    const Eigen::Vector3d p0 = g.point(base % nx, (base / nx) % g.nodes(1), base / slice);
+    auto corner = [&](int c) { return Eigen::RowVector3d(corner_point(g, p0, c).transpose()); };
+    auto node = [&](int c) { return base + corner_offset(c, nx, slice); };
     for (const auto& e : kCubeEdge) {
       const int a = in[size_t(node(e[0]))] ? e[0] : e[1], b = a == e[0] ? e[1] : e[0];
       if (!in[size_t(node(a))] || in[size_t(node(b))])
@@ -392,10 +393,7 @@ PillowedHexahedra pillowed_hexahedra(const ImplicitFunction& f, const RegularGri
     int count = 0;
     for (int c = 0; c < 8; ++c)
       if (sp.label[size_t(r)][size_t(c)] < 0)
-        inner +=
-            p0 +
-            Eigen::RowVector3d(c & 1, (c >> 1) & 1, c >> 2).cwiseProduct(g.spacing.transpose()),
-            ++count;
+        inner += corner_point(g, p0.transpose(), c).transpose(), ++count;
     inner /= count;
     const Eigen::RowVector3d mean = surface.middleRows(first, last - first).colwise().mean();
     out.V.row(r) = inner + 0.5 * (mean - inner);
