@@ -476,6 +476,18 @@ int positive(const std::string& option, const std::string& v) {
   return x;
 }
 
+// v as a number; NaN unless the whole of v is one.
+double parse_number(const std::string& v) {
+  std::size_t used = 0;
+  double x = kNaN;
+  try {
+    x = std::stod(v, &used);
+  } catch (const std::exception&) {
+    return kNaN;
+  }
+  return used == v.size() ? x : kNaN;
+}
+
 // Each name of the comma-separated list must be one of `known` (or the list is "all").
 void check_names(const std::string& option, const std::string& list,
                  const std::vector<std::string>& known) {
@@ -507,10 +519,12 @@ Options parse_options(int argc, char** argv) {
     else if (a == "--points")
       o.points = positive(a, v);
     else if (a == "--resolution")
-      o.resolution = v == "auto" ? 0 : positive(a, v);
-    else if (a == "--cells-per-spacing")
-      o.cells_per_spacing = std::stod(v);
-    else if (a == "--threads")
+      o.resolution = v == "auto" ? 0 : positive(a + " (cells or auto)", v);
+    else if (a == "--cells-per-spacing") {
+      o.cells_per_spacing = parse_number(v);
+      if (!(o.cells_per_spacing > 0))
+        throw UsageError(a + " wants a number > 0, not '" + v + "'");
+    } else if (a == "--threads")
       o.threads = positive(a, v);
     else if (a == "--methods")
       o.methods = v;
@@ -525,14 +539,7 @@ Options parse_options(int argc, char** argv) {
       o.fits.push_back(v);
     } else if (a == "--exact-sigmas") {
       for (const std::string& s : split(v)) {
-        std::size_t used = 0;
-        double x = -1;
-        try {
-          x = std::stod(s, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != s.size() || !(x >= 0))
+        if (!(parse_number(s) >= 0))
           throw UsageError(a + " wants sigmas >= 0 (cm), not '" + s + "'");
         o.exact_sigmas.push_back(s);
       }
