@@ -160,11 +160,12 @@ rms_distance, max_distance, within_3_sigma, ...), leaves (number of local fits).
         c.function = cloud_implicit_function(c.model);
         return c;
       },
-      py::arg("cloud"), py::arg("noise") = 0.0, py::arg("min_points") = 20,
+      py::arg("cloud"), py::arg("noise") = 0.0, py::arg("min_points") = 0,
       py::arg("max_depth") = 12, py::arg("support") = 0.6, py::arg("fit_ball") = 0.75,
       py::arg("threads") = 0,
       R"(Fits the multi-level partition-of-unity implicit to a cloud with oriented normals
-(prepare_cloud) -> CloudModel. noise 0: estimated from the points.)");
+(prepare_cloud) -> CloudModel. noise 0: estimated from the points;
+min_points 0: automatic (10 per fit on a clean cloud, 20 on a noisy one, more by the noise).)");
 }
 
 } // namespace

@@ -203,10 +203,10 @@ bool fit_cell(const Points& pts, const std::vector<int>& idx, const std::vector<
 // c: |Q(c)| is the distance to the nearest point, Q keeps one sign over any ball about c that
 // holds no point, and that sign is the side the winding number puts c on (inside: w > 1/2).
 // For a smooth surface u is the normal at the foot p0: the tangent plane there.
-void far_plane(const Points& pts, int i0, LocalFit& f) {
+void far_plane(const Points& pts, int i0, double w, LocalFit& f) {
   const Vector3d p0 = pts.P.row(i0).transpose();
   const Vector3d u = (f.centre - p0).normalized();
-  const bool inside = pts.winding(f.centre) > 0.5;
+  const bool inside = w > 0.5;
   f.sheets = 1;
   f.sheet[0].origin = p0;
   f.sheet[0].frame = frame_for(inside ? Vector3d(-u) : u); // Q = -n . (x - p0), n outward
@@ -222,10 +222,27 @@ void far_plane(const Points& pts, int i0, LocalFit& f) {
 // through the nearest point p0 normal to the direction u from p0 to the cell's centre: |Q| is the
 // distance to the nearest point at the centre and Q keeps one sign over the ball, the sign of the
 // side the winding number puts the centre on (inside when w > 1/2).
-bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k, LocalFit& f) {
+// A cell may also lie on the surface in a gap of the sampling: random sampling leaves holes wider
+// than the support ball of a small cell, where the far plane, normal to a direction along the
+// surface, dented the zero set by a point spacing. A cell whose nearest point is within
+// kGapReach radii and whose parent was fitted takes the parent's fit (fitted to at least
+// 4 min_points points over a ball that holds the cell's): the zero set there is the one the
+// parent would have given as a leaf.
+bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k,
+                const LocalFit* parent, LocalFit& f) {
+  constexpr double kGapReach = 2;
   std::vector<int> idx;
   std::vector<double> d2;
   index.knn(f.centre, k, idx, d2);
+  const double r2 = f.radius * f.radius;
+  if (parent && d2.front() >= r2 && d2.front() < kGapReach * kGapReach * r2 &&
+      (parent->sheets == 1 ||
+       (detail::fit_value(*parent, f.centre, nullptr) > 0) == (pts.winding(f.centre) > 0.5))) {
+    f.sheets = parent->sheets;
+    f.conjunction = parent->conjunction;
+    f.sheet = parent->sheet;
+    return false;
+  }
   f.sheets = 1;
   if (d2.front() < f.radius * f.radius) { // the support ball holds a point
     const double R = 1.5 * std::sqrt(d2.back());
@@ -244,7 +261,7 @@ bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k, L
     if (fit_sheet(pts, keep, weights(kd2, Rk), Rk, false, f.sheet[0]))
       return true;
   }
-  far_plane(pts, idx[0], f);
+  far_plane(pts, idx[0], pts.winding(f.centre), f);
   return true;
 }
 
@@ -260,10 +277,10 @@ bool check_sign(const Points& pts, const detail::NeighbourIndex& index, LocalFit
   index.knn(f.centre, 1, idx, d2);
   if (d2[0] < kSignSpacings * kSignSpacings * pts.area(idx[0]))
     return false;
-  const bool inside = pts.winding(f.centre) > 0.5;
-  if ((detail::fit_value(f, f.centre, nullptr) > 0) == inside)
+  const double w = pts.winding(f.centre);
+  if ((detail::fit_value(f, f.centre, nullptr) > 0) == (w > 0.5))
     return false;
-  far_plane(pts, idx[0], f);
+  far_plane(pts, idx[0], w, f);
   return true;
 }
 
@@ -282,13 +299,22 @@ constexpr double kCramerRaoPoints = 460;
 // they accept the misfit of wrong normals at thin edges (docs/benchmarks.md, session 9).
 constexpr double kAcceptanceCap = 2;
 
+// min_points 0 (automatic): kCleanPoints per fit on a clean cloud (rho below kCleanRho: sampled
+// from a model or a mesh), whose leaves stop only at min_points (no fit is rejected as noise):
+// smaller patches follow curvature and sharp edges (docs/benchmarks.md, session 12: tori,
+// ellipsoids, cylinders -12 to -34 %, the bench's models up to -50 %); kNoisyPoints otherwise,
+// where 10 points let the noise through (a torus at rho 0.005 +21 %, holes in 0.02-thick noisy
+// walls).
+constexpr int kCleanPoints = 10, kNoisyPoints = 20;
+constexpr double kCleanRho = 0.002;
+
 Rule fit_rule(const CloudFitOptions& o, double sigma, double rho, Eigen::Index points) {
   Rule r;
   r.sigma = sigma;
-  r.min_points = o.min_points;
+  r.min_points = o.min_points > 0 ? o.min_points : rho < kCleanRho ? kCleanPoints : kNoisyPoints;
   if (o.noise_aware) {
     const double k = std::ceil(kCramerRaoPoints * rho * rho);
-    r.min_points = static_cast<int>(std::min<double>(std::max<double>(o.min_points, k), points));
+    r.min_points = static_cast<int>(std::min<double>(std::max<double>(r.min_points, k), points));
   }
   r.acceptance = std::min(kAcceptanceCap, 1 + o.acceptance_per_rho * rho);
   return r;
@@ -297,14 +323,16 @@ Rule fit_rule(const CloudFitOptions& o, double sigma, double rho, Eigen::Index p
 struct Cell {
   int level = 0;
   Eigen::Array3i ijk = Eigen::Array3i::Zero();
-  int child = -1; // first of 8 children
+  int child = -1, parent = -1; // first of 8 children; the cell split into this one
   LocalFit fit;
-  bool far = false, split = false;
+  bool far = false, split = false, fitted = false; // fitted: fit_cell succeeded on its own points
 };
 
-// Fits cell c; decides whether it is split.
-void process(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
-             const CloudFitOptions& o, const Vector3d& origin, double root, const Rule& rule) {
+// Fits cell c (parent: the fit of the cell it came from, null if none or not fitted); decides
+// whether it is split.
+void process(Cell& c, const LocalFit* parent, const Points& pts,
+             const detail::NeighbourIndex& index, const CloudFitOptions& o, const Vector3d& origin,
+             double root, const Rule& rule) {
   const double side = root / double(1 << c.level);
   LocalFit& f = c.fit;
   f.level = c.level;
@@ -316,10 +344,10 @@ void process(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
   std::vector<double> d2;
   index.radius(f.centre, R, idx, d2);
   if (int(idx.size()) < rule.min_points) {
-    c.far = fit_sparse(pts, index, rule.min_points, f);
+    c.far = fit_sparse(pts, index, rule.min_points, parent, f);
     return;
   }
-  const bool ok = fit_cell(pts, idx, weights(d2, R), R, f);
+  const bool ok = c.fitted = fit_cell(pts, idx, weights(d2, R), R, f);
   double rms = 0, mx = 0;
   if (ok)
     misfit(f, pts, idx, rms, mx);
@@ -330,7 +358,7 @@ void process(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
   constexpr int kSplitShare = 4;
   c.split = !accepted && c.level < o.max_depth && int(idx.size()) >= kSplitShare * rule.min_points;
   if (!ok && !c.split) // no usable fit and no refinement left: the nearest points' fit
-    c.far = fit_sparse(pts, index, rule.min_points, f);
+    c.far = fit_sparse(pts, index, rule.min_points, parent, f);
 }
 
 // The median of sqrt(area per point): the point spacing.
@@ -359,11 +387,12 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   const auto t0 = std::chrono::steady_clock::now();
   if (!c.has_normals())
     throw std::invalid_argument("cloud implicit: the cloud needs oriented normals");
-  if (o.min_points < 3 || o.max_depth < 1 || o.max_depth > 20 || !(o.support > 0.5) ||
-      !(o.fit_ball > 0) || !(o.noise >= 0) || !(o.acceptance_per_rho >= 0))
+  if ((o.min_points != 0 && o.min_points < 3) || o.max_depth < 1 || o.max_depth > 20 ||
+      !(o.support > 0.5) || !(o.fit_ball > 0) || !(o.noise >= 0) || !(o.acceptance_per_rho >= 0))
     throw std::invalid_argument("cloud implicit: bad options");
-  if (c.points.rows() < o.min_points)
-    throw std::invalid_argument("cloud implicit: need at least " + std::to_string(o.min_points) +
+  const int least = o.min_points > 0 ? o.min_points : kNoisyPoints;
+  if (c.points.rows() < least)
+    throw std::invalid_argument("cloud implicit: need at least " + std::to_string(least) +
                                 " points");
   CloudFitInfo info;
   const detail::NeighbourIndex index(c.points);
@@ -396,7 +425,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   const double sigma = std::max(info.noise, kSigmaFloor * m.size);
   info.spacing = median_spacing(area);
   m.spacing = info.spacing;
-  if (o.noise_aware || o.acceptance_per_rho > 0)
+  if (o.noise_aware || o.acceptance_per_rho > 0 || o.min_points == 0)
     info.scan_noise = o.noise > 0 ? o.noise : estimate_scan_noise(c.points);
   const Rule rule = fit_rule(o, sigma, info.scan_noise / info.spacing, c.points.rows());
   info.min_points = rule.min_points;
@@ -408,7 +437,9 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
     const size_t end = cells.size();
     detail::parallel_for(
         static_cast<long>(end - begin), detail::resolve_threads(o.threads), [&](long t, int) {
-          process(cells[begin + static_cast<size_t>(t)], pts, index, o, m.origin, m.size, rule);
+          Cell& c = cells[begin + static_cast<size_t>(t)];
+          const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
+          process(c, p && p->fitted ? &p->fit : nullptr, pts, index, o, m.origin, m.size, rule);
         });
     for (size_t i = begin; i < end; ++i) {
       if (!cells[i].split)
@@ -417,6 +448,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
       for (int oc = 0; oc < 8; ++oc) {
         Cell ch;
         ch.level = level + 1;
+        ch.parent = static_cast<int>(i);
         ch.ijk = 2 * cells[i].ijk + Eigen::Array3i(oc & 1, (oc >> 1) & 1, (oc >> 2) & 1);
         cells.push_back(ch);
       }
