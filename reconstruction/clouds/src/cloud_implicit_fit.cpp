@@ -224,10 +224,10 @@ void far_plane(const Points& pts, int i0, double w, LocalFit& f) {
 // side the winding number puts the centre on (inside when w > 1/2).
 // A cell may also lie on the surface in a gap of the sampling: random sampling leaves holes wider
 // than the support ball of a small cell, where the far plane, normal to a direction along the
-// surface, dented the zero set by a point spacing. A cell whose nearest point is within
-// kGapReach radii and whose parent was fitted takes the parent's fit (fitted to at least
-// 4 min_points points over a ball that holds the cell's): the zero set there is the one the
-// parent would have given as a leaf.
+// surface, dented the zero set by up to 4 point spacings. A cell whose nearest point is within
+// kGapReach radii takes its parent's fit (parent: null unless that fit, from at least
+// 4 min_points points over a ball that holds the cell's, misses them by at most kGapMisfit
+// spacings rms: smooth there, not a fit across an edge or a thin wall's rim).
 bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k,
                 const LocalFit* parent, LocalFit& f) {
   constexpr double kGapReach = 2;
@@ -235,9 +235,7 @@ bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k,
   std::vector<double> d2;
   index.knn(f.centre, k, idx, d2);
   const double r2 = f.radius * f.radius;
-  if (parent && d2.front() >= r2 && d2.front() < kGapReach * kGapReach * r2 &&
-      (parent->sheets == 1 ||
-       (detail::fit_value(*parent, f.centre, nullptr) > 0) == (pts.winding(f.centre) > 0.5))) {
+  if (parent && d2.front() >= r2 && d2.front() < kGapReach * kGapReach * r2) {
     f.sheets = parent->sheets;
     f.conjunction = parent->conjunction;
     f.sheet = parent->sheet;
@@ -320,12 +318,17 @@ Rule fit_rule(const CloudFitOptions& o, double sigma, double rho, Eigen::Index p
   return r;
 }
 
+// A parent's fit is passed to cells in gaps (fit_sparse) when its rms misfit is at most this many
+// point spacings (0.01 left the gaps of spheres; fits across the valve's edges miss by more).
+constexpr double kGapMisfit = 0.05;
+
 struct Cell {
   int level = 0;
   Eigen::Array3i ijk = Eigen::Array3i::Zero();
   int child = -1, parent = -1; // first of 8 children; the cell split into this one
   LocalFit fit;
   bool far = false, split = false, fitted = false; // fitted: fit_cell succeeded on its own points
+  double misfit = 0;                               // rms distance of the fit to its points
 };
 
 // Fits cell c (parent: the fit of the cell it came from, null if none or not fitted); decides
@@ -351,6 +354,7 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
   double rms = 0, mx = 0;
   if (ok)
     misfit(f, pts, idx, rms, mx);
+  c.misfit = rms;
   const double sigma = rule.acceptance * rule.sigma;
   const bool accepted = ok && rms <= kAcceptRms * sigma && mx <= kAcceptMax * sigma;
   // A ball of half the radius holds about a quarter of a surface's points: children get
@@ -439,7 +443,8 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
         static_cast<long>(end - begin), detail::resolve_threads(o.threads), [&](long t, int) {
           Cell& c = cells[begin + static_cast<size_t>(t)];
           const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
-          process(c, p && p->fitted ? &p->fit : nullptr, pts, index, o, m.origin, m.size, rule);
+          process(c, p && p->fitted && p->misfit <= kGapMisfit * info.spacing ? &p->fit : nullptr,
+                  pts, index, o, m.origin, m.size, rule);
         });
     for (size_t i = begin; i < end; ++i) {
       if (!cells[i].split)

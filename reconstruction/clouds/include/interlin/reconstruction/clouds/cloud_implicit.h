@@ -121,19 +121,22 @@ struct CloudFitInfo {
 // rms distance to its points is at most 1.5 sigma and the largest at most 4 sigma (both floored
 // at 1e-6 of the root cube), when its children would hold fewer than min_points points each
 // (it holds fewer than 4 min_points: a ball of half the radius holds about a quarter of a
-// surface's points; min_points raised by noise_aware on noisy scans), or at max_depth. A cell with
-// fewer than min_points points in its fit ball takes its min_points nearest points: fitted like any
-// cell when its support ball holds one of them, else (a far cell) the plane through the nearest
-// point normal to the direction from it to the cell's centre, on the side the generalized winding
-// number of the cloud (Barill et al. 2018) puts the centre: Q is about minus the distance to the
-// points outside, plus the distance inside, and never changes sign within the ball (the tangent
-// planes of a thin wall's two sides both say "inside" past its edge, which made spurious sheets).
-// After fitting, every leaf whose centre is at least 2 point spacings from the points and whose Q
-// there contradicts the winding number takes that plane too (info.sign_fixed_leaves). Before
-// fitting, the normals' orientation is checked by the divergence theorem (sum of a_i n_i . (p_i -
-// centroid) = 3 x volume > 0 for outward normals, a_i the area per point): inward normals are
-// flipped and info.flipped is set. Throws std::invalid_argument for a cloud without normals, fewer
-// than min_points points or bad options.
+// surface's points; min_points automatic or given, raised by noise_aware on noisy scans), or at
+// max_depth. A cell with fewer than min_points points in its fit ball takes its min_points nearest
+// points: fitted like any cell when its support ball holds one of them; in a gap of the sampling
+// (no point in the support ball, one within twice its radius) the parent's fit if it misses its
+// points by at most 0.05 point spacings rms; else (a far cell) the plane through
+// the nearest point normal to the direction from it to the cell's centre, on the side the
+// generalized winding number of the cloud (Barill et al. 2018) puts the centre: Q is about minus
+// the distance to the points outside, plus the distance inside, and never changes sign within the
+// ball (the tangent planes of a thin wall's two sides both say "inside" past its edge, which made
+// spurious sheets). After fitting, every leaf whose centre is at least 2 point spacings from the
+// points and whose Q there contradicts the winding number takes that plane too
+// (info.sign_fixed_leaves). Before fitting, the normals' orientation is checked by the divergence
+// theorem (sum of a_i n_i . (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per
+// point): inward normals are flipped and info.flipped is set. Throws std::invalid_argument for a
+// cloud without normals, fewer than min_points (automatic: 20) points or bad options (min_points 1
+// or 2, or negative).
 CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& options = {},
                                  CloudFitInfo* info = nullptr);
 
