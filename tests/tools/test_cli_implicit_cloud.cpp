@@ -114,7 +114,8 @@ TEST_CASE("CLI implicit: unstructured clouds -> .ifl through the points, signed,
   }
 }
 
-TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by default",
+TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by default; points "
+          "per fit",
           "[cli][implicit][clouds]") {
   TempDir d("implicitcloudcell");
   write_cloud(d / "scan.xyz", sample_shape(SampledShape{Shape::sphere}, 3000, 0.002, 44));
@@ -128,6 +129,14 @@ TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by d
   };
   // 3000 points on the unit sphere: spacing about sqrt(4 pi / 3000) = 0.065
   const double spacing = number_after(r.out, "point spacing ");
+  // noise 0.002 = 0.03 spacings: a noisy scan, 20 points per fit; a clean cloud (noise-free
+  // samples) gets 10
+  CHECK_THAT(r.out, Catch::Contains(", 20 points per fit"));
+  write_cloud(d / "clean.csv", sample_shape(SampledShape{Shape::sphere}, 3000, 0, 45));
+  const Run clean = run("implicit " + d / "clean.csv -o " + d / "clean.ifl -q");
+  INFO(clean.out << clean.err);
+  REQUIRE(clean.status == 0);
+  CHECK_THAT(clean.out, Catch::Contains(", 10 points per fit"));
   CHECK(spacing == Approx(std::sqrt(4 * M_PI / 3000)).epsilon(0.15));
   r = run("mesh " + d / "scan.ifl -o " + d / "scan.stl -q");
   REQUIRE(r.status == 0);
