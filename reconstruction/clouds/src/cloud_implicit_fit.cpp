@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace interlin {
 
@@ -480,9 +481,17 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
       info.two_sheet_leaves += cell.fit.sheets == 2;
       info.far_leaves += cell.far;
     }
-  std::sort(m.fits.begin(), m.fits.end(), [&](const LocalFit& a, const LocalFit& b) {
-    return morton(a, info.depth) < morton(b, info.depth);
-  });
+  {
+    std::vector<std::pair<std::uint64_t, size_t>> order(m.fits.size());
+    for (size_t i = 0; i < order.size(); ++i)
+      order[i] = {morton(m.fits[i], info.depth), i};
+    std::sort(order.begin(), order.end());
+    std::vector<LocalFit> sorted;
+    sorted.reserve(order.size());
+    for (const auto& [key, i] : order)
+      sorted.push_back(m.fits[i]);
+    m.fits = std::move(sorted);
+  }
   info.cells = static_cast<long>(cells.size());
   info.leaves = static_cast<long>(m.fits.size());
 
