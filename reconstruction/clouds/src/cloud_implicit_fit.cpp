@@ -243,7 +243,7 @@ bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k,
     return false;
   }
   f.sheets = 1;
-  if (d2.front() < f.radius * f.radius) { // the support ball holds a point
+  if (d2.front() < r2) { // the support ball holds a point
     const double R = 1.5 * std::sqrt(d2.back());
     if (fit_cell(pts, idx, weights(d2, R), R, f))
       return false;
@@ -284,10 +284,11 @@ bool check_sign(const Points& pts, const detail::NeighbourIndex& index, LocalFit
 }
 
 // What decides a cell: the points per fit and the acceptance thresholds (kAcceptRms sigma,
-// kAcceptMax sigma, both times `acceptance`).
+// kAcceptMax sigma, both times `acceptance`); gap_misfit: the largest rms misfit of a fit passed
+// to its children in gaps of the sampling (fit_sparse).
 struct Rule {
   int min_points = 20;
-  double sigma = 0, acceptance = 1;
+  double sigma = 0, acceptance = 1, gap_misfit = 0;
 };
 
 // Noise-aware neighbourhood (CloudFitOptions::noise_aware): a local fit's offset error from k
@@ -328,11 +329,12 @@ struct Cell {
   Eigen::Array3i ijk = Eigen::Array3i::Zero();
   int child = -1, parent = -1; // first of 8 children; the cell split into this one
   LocalFit fit;
-  bool far = false, split = false, fitted = false; // fitted: fit_cell succeeded on its own points
-  double misfit = 0;                               // rms distance of the fit to its points
+  // smooth: its fit, from its own points, misses them by at most rule.gap_misfit rms (passed to
+  // its children in gaps of the sampling)
+  bool far = false, split = false, smooth = false;
 };
 
-// Fits cell c (parent: the fit of the cell it came from, null if none or not fitted); decides
+// Fits cell c (parent: the fit of the cell it came from, null if none or not smooth); decides
 // whether it is split.
 void process(Cell& c, const LocalFit* parent, const Points& pts,
              const detail::NeighbourIndex& index, const CloudFitOptions& o, const Vector3d& origin,
@@ -351,11 +353,11 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
     c.far = fit_sparse(pts, index, rule.min_points, parent, f);
     return;
   }
-  const bool ok = c.fitted = fit_cell(pts, idx, weights(d2, R), R, f);
+  const bool ok = fit_cell(pts, idx, weights(d2, R), R, f);
   double rms = 0, mx = 0;
   if (ok)
     misfit(f, pts, idx, rms, mx);
-  c.misfit = rms;
+  c.smooth = ok && rms <= rule.gap_misfit;
   const double sigma = rule.acceptance * rule.sigma;
   const bool accepted = ok && rms <= kAcceptRms * sigma && mx <= kAcceptMax * sigma;
   // A ball of half the radius holds about a quarter of a surface's points: children get
@@ -432,7 +434,8 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   m.spacing = info.spacing;
   if (o.noise_aware || o.acceptance_per_rho > 0 || o.min_points == 0)
     info.scan_noise = o.noise > 0 ? o.noise : estimate_scan_noise(c.points);
-  const Rule rule = fit_rule(o, sigma, info.scan_noise / info.spacing, c.points.rows());
+  Rule rule = fit_rule(o, sigma, info.scan_noise / info.spacing, c.points.rows());
+  rule.gap_misfit = kGapMisfit * info.spacing;
   info.min_points = rule.min_points;
   info.acceptance = rule.acceptance;
 
@@ -444,8 +447,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
         static_cast<long>(end - begin), detail::resolve_threads(o.threads), [&](long t, int) {
           Cell& c = cells[begin + static_cast<size_t>(t)];
           const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
-          process(c, p && p->fitted && p->misfit <= kGapMisfit * info.spacing ? &p->fit : nullptr,
-                  pts, index, o, m.origin, m.size, rule);
+          process(c, p && p->smooth ? &p->fit : nullptr, pts, index, o, m.origin, m.size, rule);
         });
     for (size_t i = begin; i < end; ++i) {
       if (!cells[i].split)
