@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -331,14 +332,58 @@ struct Cell {
   LocalFit fit;
   // smooth: its fit, from its own points, misses them by at most rule.gap_misfit rms (passed to
   // its children in gaps of the sampling)
-  bool far = false, split = false, smooth = false;
+  bool far = false, split = false, smooth = false, sampled = false;
 };
+
+// A ball of half the radius holds about a quarter of a surface's points: children get
+// min_points each only when the cell has kSplitShare times as many.
+constexpr int kSplitShare = 4;
+
+// Coarse cells hold much of the cloud in their ball and are split on every cloud that is not a
+// plane (their fits took half the fit time of a 100,000-point model cloud, most of it at levels
+// that no leaf reaches). Such a cell is split on the evidence of every kSampleStride-th point
+// alone when at least kSamplePoints of them lie in its ball and their fit misses them by more
+// than kSampleMargin times the largest rms a fit may have to be accepted or passed on to gaps
+// (Rule): the fit from all the points would miss them by more than that too. A split cell's fit
+// is never evaluated (only leaves are; only smooth parents pass theirs on), so the model is the
+// one the full fits give; any other cell is fitted from all its points.
+constexpr int kSampleStride = 16, kSamplePoints = 256;
+constexpr double kSampleMargin = 4;
+
+// Whether cell c (its fit's centre set; fit ball R) is split on the sample (the rows 0,
+// kSampleStride, 2 kSampleStride, ... of the points, indexed alone); if so its fit and flags are
+// set.
+bool split_on_sample(Cell& c, const detail::NeighbourIndex& sample, const Points& pts, double R,
+                     const Rule& rule, int max_depth) {
+  if (c.level >= max_depth)
+    return false;
+  std::vector<int> idx;
+  std::vector<double> d2;
+  sample.radius(c.fit.centre, R, idx, d2);
+  // the sample's points are some of the cell's: the split's point count is met
+  if (int(idx.size()) < std::max(kSamplePoints, kSplitShare * rule.min_points))
+    return false;
+  for (int& i : idx)
+    i *= kSampleStride;
+  LocalFit f = c.fit;
+  double rms = 0, mx = 0;
+  if (!fit_cell(pts, idx, weights(d2, R), R, f))
+    return false;
+  misfit(f, pts, idx, rms, mx);
+  const double sigma = rule.acceptance * rule.sigma;
+  if (!(rms > kSampleMargin * std::max(kAcceptRms * sigma, rule.gap_misfit)))
+    return false;
+  c.fit = f;
+  c.split = c.sampled = true;
+  c.smooth = false;
+  return true;
+}
 
 // Fits cell c (parent: the fit of the cell it came from, null if none or not smooth); decides
 // whether it is split.
 void process(Cell& c, const LocalFit* parent, const Points& pts,
-             const detail::NeighbourIndex& index, const CloudFitOptions& o, const Vector3d& origin,
-             double root, const Rule& rule) {
+             const detail::NeighbourIndex& index, const detail::NeighbourIndex* sample,
+             const CloudFitOptions& o, const Vector3d& origin, double root, const Rule& rule) {
   const double side = root / double(1 << c.level);
   LocalFit& f = c.fit;
   f.level = c.level;
@@ -346,6 +391,8 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
   f.centre = origin + side * (c.ijk.cast<double>() + 0.5).matrix();
   f.radius = o.support * side * std::sqrt(3.0);
   const double R = o.fit_ball * side * std::sqrt(3.0);
+  if (sample && split_on_sample(c, *sample, pts, R, rule, o.max_depth))
+    return;
   std::vector<int> idx;
   std::vector<double> d2;
   index.radius(f.centre, R, idx, d2);
@@ -360,9 +407,6 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
   c.smooth = ok && rms <= rule.gap_misfit;
   const double sigma = rule.acceptance * rule.sigma;
   const bool accepted = ok && rms <= kAcceptRms * sigma && mx <= kAcceptMax * sigma;
-  // A ball of half the radius holds about a quarter of a surface's points: children get
-  // min_points each only when the cell has kSplitShare times as many.
-  constexpr int kSplitShare = 4;
   c.split = !accepted && c.level < o.max_depth && int(idx.size()) >= kSplitShare * rule.min_points;
   if (!ok && !c.split) // no usable fit and no refinement left: the nearest points' fit
     c.far = fit_sparse(pts, index, rule.min_points, parent, f);
@@ -439,16 +483,21 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   info.min_points = rule.min_points;
   info.acceptance = rule.acceptance;
 
+  std::unique_ptr<const detail::NeighbourIndex> sample;
+  if (o.sample_coarse && c.points.rows() >= Index(kSampleStride) * kSamplePoints)
+    sample = std::make_unique<const detail::NeighbourIndex>(
+        c.points(Eigen::seq(0, Eigen::last, kSampleStride), Eigen::all));
   std::vector<Cell> cells(1);
   size_t begin = 0;
   for (int level = 0; begin < cells.size(); ++level) {
     const size_t end = cells.size();
-    detail::parallel_for(
-        static_cast<long>(end - begin), detail::resolve_threads(o.threads), [&](long t, int) {
-          Cell& c = cells[begin + static_cast<size_t>(t)];
-          const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
-          process(c, p && p->smooth ? &p->fit : nullptr, pts, index, o, m.origin, m.size, rule);
-        });
+    detail::parallel_for(static_cast<long>(end - begin), detail::resolve_threads(o.threads),
+                         [&](long t, int) {
+                           Cell& c = cells[begin + static_cast<size_t>(t)];
+                           const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
+                           process(c, p && p->smooth ? &p->fit : nullptr, pts, index, sample.get(),
+                                   o, m.origin, m.size, rule);
+                         });
     for (size_t i = begin; i < end; ++i) {
       if (!cells[i].split)
         continue;
@@ -495,6 +544,8 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
     m.fits = std::move(sorted);
   }
   info.cells = static_cast<long>(cells.size());
+  info.sampled_splits =
+      std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return c.sampled; });
   info.leaves = static_cast<long>(m.fits.size());
 
   const ImplicitFunction F = cloud_implicit_function(std::make_shared<const CloudImplicit>(m));

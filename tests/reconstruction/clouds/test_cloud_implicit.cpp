@@ -11,6 +11,8 @@
 
 #include <memory>
 #include <random>
+#include <string>
+#include <utility>
 
 using namespace interlin;
 
@@ -328,5 +330,71 @@ TEST_CASE("cloud implicit: 10 points per fit on clean clouds, and no dents in sa
     CHECK(info[1].min_points == 10);
     CHECK(rms[1] <= (shape == test::Shape::sphere ? 1.15 : 0.95) * rms[0]);
     CHECK(largest[1] <= std::max(kLargest * largest[0], kGap * info[1].spacing));
+  }
+}
+
+namespace {
+
+// n points uniform by area on the box [-1, 1] x [-1, 1] x [-0.1, 0.1] (its faces are planes
+// that coarse cells can fit within the noise), exact outward normals, Gaussian noise sigma.
+PointCloud slab_cloud(int n, double sigma, unsigned seed) {
+  const Eigen::Vector3d h(1, 1, 0.1);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::normal_distribution<double> G(0, sigma);
+  const double area[3] = {h(1) * h(2), h(0) * h(2), h(0) * h(1)}; // per face of each axis / 4
+  PointCloud c;
+  c.points.resize(n, 3);
+  c.normals.setZero(n, 3);
+  for (int i = 0; i < n; ++i) {
+    double t = 0.5 * (U(rng) + 1) * (area[0] + area[1] + area[2]);
+    const int a = t < area[0] ? 0 : t < area[0] + area[1] ? 1 : 2;
+    const double side = U(rng) < 0 ? -1 : 1;
+    for (int k = 0; k < 3; ++k)
+      c.points(i, k) = k == a ? side * h(k) : U(rng) * h(k);
+    c.normals(i, a) = side;
+    for (int k = 0; k < 3 && sigma > 0; ++k)
+      c.points(i, k) += G(rng);
+  }
+  return c;
+}
+
+} // namespace
+
+TEST_CASE("cloud implicit: coarse cells split on a sample give the full fits' model",
+          "[clouds][implicit]") {
+  // Cells whose fit ball holds 256 or more of every 16th point are split on those alone when
+  // their fit misses them by more than 4 x the acceptance rms (info.sampled_splits). The claim:
+  // the model is the one full fits give. The slab's faces are planes that cells of 4,000 points
+  // and more fit within the noise, accepted at coarse levels: deciding on the sample at 0.5 x
+  // the acceptance rms splits some of them and fails this test (measured; 0.8 x passes); the
+  // curved shapes are split at every coarse level.
+  const test::SampledShape sphere{test::Shape::sphere}, torus{test::Shape::torus},
+      ellipsoid{test::Shape::ellipsoid};
+  const std::pair<std::string, PointCloud> clouds[] = {
+      {"slab", slab_cloud(60000, 0, 51)},
+      {"noisy slab", slab_cloud(60000, 0.002, 52)},
+      {"sphere", test::sample_shape(sphere, 20000, 0, 53)},
+      {"noisy torus", test::sample_shape(torus, 20000, 0.006, 54)},
+      {"ellipsoid", test::sample_shape(ellipsoid, 20000, 0, 55)}};
+  for (const auto& [name, c] : clouds) {
+    INFO(name);
+    CloudFitOptions o;
+    o.noise = name.rfind("noisy", 0) == 0 ? 0.002 + 0.004 * (name == "noisy torus") : 0;
+    CloudFitInfo info[2];
+    const CloudImplicit sampled = fit_cloud_implicit(c, o, &info[0]);
+    o.sample_coarse = false;
+    const CloudImplicit full = fit_cloud_implicit(c, o, &info[1]);
+    CHECK(info[0].sampled_splits > 0);
+    CHECK(info[1].sampled_splits == 0);
+    CHECK(info[0].cells == info[1].cells);
+    REQUIRE(sampled.fits.size() == full.fits.size());
+    bool same = true; // the leaves' fits come from the same points: equal to the bit
+    for (size_t i = 0; i < full.fits.size(); ++i) {
+      const LocalFit &a = sampled.fits[i], &b = full.fits[i];
+      same = same && a.level == b.level && (a.cell == b.cell).all() && a.sheets == b.sheets &&
+             a.sheet[0].c == b.sheet[0].c && a.sheet[1].c == b.sheet[1].c;
+    }
+    CHECK(same);
   }
 }
