@@ -331,8 +331,10 @@ struct Cell {
   int child = -1, parent = -1; // first of 8 children; the cell split into this one
   LocalFit fit;
   // smooth: its fit, from its own points, misses them by at most rule.gap_misfit rms (passed to
-  // its children in gaps of the sampling)
-  bool far = false, split = false, smooth = false, sampled = false;
+  // its children in gaps of the sampling); dense: its fit ball holds enough of the sample to be
+  // split on it (split_on_sample), which a child's ball, inside its parent's, can only if the
+  // parent's did; sampled: it was split on the sample
+  bool far = false, split = false, smooth = false, dense = false, sampled = false;
 };
 
 // A ball of half the radius holds about a quarter of a surface's points: children get
@@ -361,7 +363,8 @@ bool split_on_sample(Cell& c, const detail::NeighbourIndex& sample, const Points
   std::vector<double> d2;
   sample.radius(c.fit.centre, R, idx, d2);
   // the sample's points are some of the cell's: the split's point count is met
-  if (int(idx.size()) < std::max(kSamplePoints, kSplitShare * rule.min_points))
+  c.dense = int(idx.size()) >= std::max(kSamplePoints, kSplitShare * rule.min_points);
+  if (!c.dense)
     return false;
   for (int& i : idx)
     i *= kSampleStride;
@@ -491,13 +494,13 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   size_t begin = 0;
   for (int level = 0; begin < cells.size(); ++level) {
     const size_t end = cells.size();
-    detail::parallel_for(static_cast<long>(end - begin), detail::resolve_threads(o.threads),
-                         [&](long t, int) {
-                           Cell& c = cells[begin + static_cast<size_t>(t)];
-                           const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
-                           process(c, p && p->smooth ? &p->fit : nullptr, pts, index, sample.get(),
-                                   o, m.origin, m.size, rule);
-                         });
+    detail::parallel_for(
+        static_cast<long>(end - begin), detail::resolve_threads(o.threads), [&](long t, int) {
+          Cell& c = cells[begin + static_cast<size_t>(t)];
+          const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
+          process(c, p && p->smooth ? &p->fit : nullptr, pts, index,
+                  !p || p->dense ? sample.get() : nullptr, o, m.origin, m.size, rule);
+        });
     for (size_t i = begin; i < end; ++i) {
       if (!cells[i].split)
         continue;
