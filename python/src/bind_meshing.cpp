@@ -215,8 +215,9 @@ facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetra
 grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer, as hexahedra by default);
 hexahedra "dual": one per inside grid node, corners at the cells' points on F = 0 (Zhang & Bajaj
 2006: walls one node layer thick kept; "tet" with "dual" raises ValueError); "pillow": dual
-hexahedra inside and one pillow layer out to F = 0, every boundary node on F = 0 (Mitchell &
-Tautges 1995), but folds may remain at sharp edges: check volume_quality(V, C)["inverted"];
+hexahedra inside (made manifold) and one pillow layer out to F = 0 (Mitchell & Tautges 1995),
+the boundary nodes on F = 0 but those of pillows still folded after untangling (info["held"]);
+folds may remain on walls under a cell thick: check volume_quality(V, C)["inverted"];
 rule "strict" (F > eps) or "inclusive" (F >= -eps) for the inside nodes; margin: inside nodes
 within margin x cell of F = 0 count as outside (no thin layer elements). info["held"]: layer
 nodes held short of F = 0 so that no element folds (max_boundary_f is over the others,

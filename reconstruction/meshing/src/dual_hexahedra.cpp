@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 
 namespace interlin {
@@ -357,6 +358,62 @@ Eigen::MatrixXd project_side_points(const ImplicitFunction& f, double h, const S
   return P;
 }
 
+// The inside nodes made a manifold core where the pillows need it (Mitchell & Tautges 1995 pillow a
+// manifold shrink set): the dual hexahedra of two inside nodes at opposite corners of a grid
+// square whose other two corners are outside meet along an edge only; when those two outside
+// corners are joined around a cube on the square (one side of the surface, one surface point),
+// that point lies over core faces facing opposite ways and no pillow under it is valid. The same
+// for the only two inside corners of a cube, opposite ones (they meet at a point). In each such
+// square or cube the inside node with the smaller S leaves the core (its neighbours' pillows reach
+// F = 0 past it), in passes until none is left. Walls under about a cell thick and oblique to the
+// grid are such squares throughout and lose their core (docs/benchmarks.md). Returns the nodes
+// removed.
+long manifold_core(const RegularGrid& g, const Eigen::VectorXd& S, std::vector<char>& in) {
+  const long nx = g.nodes(0), ny = g.nodes(1), nz = g.nodes(2), slice = nx * ny;
+  // A cube's faces as corner quadruples (a, b, c, d) in cyclic order.
+  constexpr int kSquare[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                 {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+  long removed = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (long k = 0; k + 1 < nz; ++k)
+      for (long j = 0; j + 1 < ny; ++j)
+        for (long i = 0; i + 1 < nx; ++i) {
+          const long base = g.index(i, j, k);
+          long node[8];
+          unsigned inside = 0;
+          for (int c = 0; c < 8; ++c) {
+            node[c] = base + corner_offset(c, nx, slice);
+            inside |= unsigned(in[size_t(node[c])]) << c;
+          }
+          auto drop_weaker = [&](long a, long b) {
+            const long n = S(a) <= S(b) ? a : b;
+            in[size_t(n)] = 0;
+            ++removed;
+            changed = true;
+          };
+          if (inside == 0x81u || inside == 0x42u || inside == 0x24u || inside == 0x18u) {
+            const int c = std::countr_zero(inside);
+            drop_weaker(node[c], node[c ^ 7]);
+            continue;
+          }
+          std::array<signed char, 8> side;
+          outside_components(inside, side);
+          for (const auto& q : kSquare) {
+            const bool a = inside >> q[0] & 1u, b = inside >> q[1] & 1u, c = inside >> q[2] & 1u,
+                       d = inside >> q[3] & 1u;
+            const bool joined = a ? side[size_t(q[1])] == side[size_t(q[3])]
+                                  : side[size_t(q[0])] == side[size_t(q[2])];
+            if (a == c && b == d && a != b && joined) {
+              drop_weaker(a ? node[q[0]] : node[q[1]], a ? node[q[2]] : node[q[3]]);
+              break;
+            }
+          }
+        }
+  }
+  return removed;
+}
+
 } // namespace
 
 PillowedHexahedra pillowed_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
@@ -365,6 +422,7 @@ PillowedHexahedra pillowed_hexahedra(const ImplicitFunction& f, const RegularGri
   std::vector<char> in(size_t(S.size()));
   for (long n = 0; n < S.size(); ++n)
     in[size_t(n)] = S(n) > epsilon && !g.outer(n % nx, (n / nx) % ny, n / slice);
+  const long trimmed = manifold_core(g, S, in);
   const DualCells d = dual_cells(g, in, threads);
   const long cells = long(d.cell.size());
   const SidePoints sp = side_points(g, S, in, d.cell);
@@ -373,6 +431,7 @@ PillowedHexahedra pillowed_hexahedra(const ImplicitFunction& f, const RegularGri
       project_side_points(f, g.spacing.minCoeff(), sp, missed_side, threads);
   const long points = surface.rows();
   PillowedHexahedra out;
+  out.trimmed = trimmed;
   out.V.resize(cells + points, 3);
   out.V.bottomRows(points) = surface;
   out.boundary.assign(size_t(cells + points), 0);

@@ -597,10 +597,27 @@ long untangle_pillows(const ImplicitFunction& f, double h, const std::vector<cha
   return inverted;
 }
 
+// The pillow layer as a projected layer (its surface points copies of the core points below them:
+// a pillow's corner j + 4 stands on its corner j), so that its folds are held like that layer's.
+ProjectedLayer pillow_layer(const PillowedHexahedra& p) {
+  ProjectedLayer layer;
+  const long points = long(std::count(p.boundary.begin(), p.boundary.end(), char(1)));
+  layer.n_inner = long(p.boundary.size()) - points;
+  layer.below.assign(size_t(points), -1);
+  const long pillows = p.C.rows() - p.core;
+  layer.bottom = p.C.block(p.core, 0, pillows, 4);
+  layer.top = p.C.block(p.core, 4, pillows, 4);
+  for (long q = 0; q < pillows; ++q)
+    for (int j = 0; j < 4; ++j)
+      layer.below[size_t(layer.top(q, j) - layer.n_inner)] = layer.bottom(q, j);
+  return layer;
+}
+
 // Dual hexahedra with a pillow layer (pillowed_hexahedra) on g padded by a cell, nodes on internal
 // zero sheets inside; the core points smoothed by functional (15), the folds untangled
 // (untangle_pillows: core points free, surface points sliding on F = 0), step (4) of volume_mesh
-// with the unprojected points held, then the coverage.
+// with the unprojected points held and the surface points of pillows still folded held short of
+// F = 0 like a projected layer's (hold_folded_layer on pillow_layer), then the coverage.
 VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const VolumeMeshOptions& o,
                        VolumeMeshInfo& out) {
   RegularGrid g;
@@ -609,6 +626,7 @@ VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const V
     o.progress("dual hexahedra of " + std::to_string(out.inside_nodes) +
                " inside nodes and their pillow layer");
   PillowedHexahedra p = pillowed_hexahedra(f, g, S, o.epsilon, o.threads);
+  const ProjectedLayer layer = pillow_layer(p);
   VolumeMesh vm;
   vm.V = std::move(p.V);
   vm.C = std::move(p.C);
@@ -617,6 +635,7 @@ VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const V
   out.unprojected = std::count(p.missed.begin(), p.missed.end(), char(1));
   out.inner_cells = p.core;
   out.layer_elements = vm.C.rows() - p.core;
+  out.dropped_nodes = p.trimmed;
   if (vm.C.rows() > 0) {
     if (o.progress)
       o.progress("untangling the pillow layer");
@@ -625,7 +644,7 @@ VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const V
     so.threads = o.threads;
     smooth_volume(vm.V, vm.C, vm.boundary, so);
     untangle_pillows(f, g.spacing.minCoeff(), p.missed, vm, o.threads);
-    smooth_and_hold(f, g.spacing.minCoeff(), o, nullptr, vm, out, p.missed);
+    smooth_and_hold(f, g.spacing.minCoeff(), o, &layer, vm, out, p.missed);
   }
   measure_coverage(f, g, S, o, vm, kCellsAcrossDualWall, out);
   return vm;

@@ -2,6 +2,7 @@
 // layer of hexahedra from its boundary to F = 0. Closed-form bodies (sphere, ellipsoid, a thin
 // spherical shell, thin discs): every boundary node on F = 0, no inverted element, the minimum
 // scaled Jacobian, the volume against the exact one and its observed order.
+#include "interlin/interflatation/rfunctions/model.h"
 #include "interlin/reconstruction/meshing/boundary_mesh.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/meshing/volume_mesh.h"
@@ -12,8 +13,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 using namespace interlin;
@@ -198,5 +201,45 @@ TEST_CASE("volume_mesh: pillowed hexahedra keep a grid-aligned wall under a cell
     const PillowRun r = pillow(f, 0.08);
     check_pillowed(f, r, 0.05);
     CHECK(std::abs(r.quality.volume / test::thin_disc_volume(T) - 1) < 0.08);
+  }
+}
+
+TEST_CASE("volume_mesh: pillowed hexahedra of the shipped models have no inverted element",
+          "[volume]") {
+  // Sharp edges, creases and blades a cell or two thick. Before the core was made manifold and
+  // folded pillows held, the valve at h = 0.2 kept 25 inverted pillows and the impeller at 24
+  // cells 41 (docs/benchmarks.md, pillowed hexahedra). Nodes on F = 0: all but the few held or
+  // not projected (measured 98.6-100 %); the valve's volume against its fine tetrahedra
+  // (114.9401 at h = 0.07): measured -0.94 %, the rest under its thin walls (coverage).
+  const struct {
+    const char* model;
+    int resolution;
+    double cell;
+  } cases[] = {{"car.rf", 24, 0}, {"impeller.rf", 24, 0}, {"naca0011_plate.rf", 24, 0},
+               {"uav.rf", 24, 0}, {"valve.rf", 24, 0},    {"valve.rf", 0, 0.2}};
+  for (const auto& c : cases) {
+    INFO(c.model << " at resolution " << c.resolution << ", cell " << c.cell);
+    const ImplicitFunction f = load_model(std::string(INTERLIN_DATA_DIR) + "/models/" + c.model);
+    VolumeMeshOptions o;
+    o.elements = VolumeElements::hexahedra;
+    o.boundary = VolumeBoundary::pillow;
+    o.resolution = c.resolution;
+    o.cell = c.cell;
+    VolumeMeshInfo info;
+    const VolumeMesh m = volume_mesh(f, o, &info);
+    REQUIRE(m.C.rows() > 0);
+    const VolumeQuality q = volume_quality(m.V, m.C);
+    const long boundary = std::count(m.boundary.begin(), m.boundary.end(), char(1));
+    INFO("trimmed " << info.dropped_nodes << ", held " << info.held << ", on F = 0 " << info.on_zero
+                    << " of " << boundary << ", volume " << q.volume);
+    CHECK(q.inverted == 0);
+    CHECK(check_mesh(m.V, triangulate_quads(m.V, m.B)).boundary_edges == 0);
+    CHECK(m.B.rows() == info.layer_elements);
+    CHECK(double(info.on_zero) >= 0.98 * double(boundary));
+    if (c.cell > 0) { // both remedies at work, and the volume
+      CHECK(info.dropped_nodes > 0);
+      CHECK(info.held > 0);
+      CHECK(std::abs(q.volume / 114.9401 - 1) < 0.015);
+    }
   }
 }

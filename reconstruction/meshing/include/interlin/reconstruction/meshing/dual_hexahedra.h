@@ -56,6 +56,7 @@ struct PillowedHexahedra {
                               // linear roots' mean: the box, or features thinner than the grid)
   long core = 0;              // core hexahedra (the first rows of C)
   long split = 0;             // cells with more than one surface point (one per side)
+  long trimmed = 0;           // inside nodes left out of the core to make it manifold
 };
 
 // Dual hexahedra with a buffer layer (pillowing; Mitchell & Tautges 1995, "Pillowing doublets:
@@ -64,7 +65,12 @@ struct PillowedHexahedra {
 // between each boundary quadrilateral of the core and its image on F = 0, so every boundary node
 // is a surface point and no element has more than one face on the surface.
 // Steps: (1) inside nodes are S > epsilon, the grid's outer layer excluded (pad the grid by a
-// cell); (2) in every cell with an inside node, the outside corners fall into components connected
+// cell); the core is made manifold where the pillows need it: two inside nodes at opposite
+// corners of a grid square whose outside corners are joined around a cube on it, or the only two
+// inside corners of a cube, opposite ones, have dual hexahedra meeting along an edge or at a point
+// only, under one surface point over core faces facing opposite ways (no valid pillow); the one
+// with the smaller S leaves the core (in passes; its neighbours' pillows reach F = 0 past it);
+// (2) in every cell with an inside node, the outside corners fall into components connected
 // along the cell's edges: one side of the surface each (a wall one node layer thick, or two sheets
 // of the core meeting at the cell's point, gives two); each component's surface point is the mean
 // of the linear roots on the edges from inside corners to it, projected onto F = 0 along those

@@ -31,8 +31,9 @@ enum class VolumeElements { tetrahedra, hexahedra };
 // cells cut by the surface (dual_hexahedra, Zhang & Bajaj 2006): walls down to one node layer
 // keep their volume, each side on its own cells' points. pillow (hexahedra only): the dual
 // hexahedra as a core inside the body and one layer of hexahedra between its boundary and F = 0
-// (pillowed_hexahedra; the surface points split by side where a wall is one node layer thick):
-// every boundary node on F = 0.
+// (pillowed_hexahedra; the core made manifold, the surface points split by side where a wall is
+// one node layer thick): every boundary node on F = 0 but the few held short of it where a pillow
+// stays folded after untangling (0-1.1 % on the shipped models; docs/benchmarks.md).
 enum class VolumeBoundary { cut, projected, dual, pillow };
 
 struct VolumeMeshOptions {
@@ -69,7 +70,8 @@ struct VolumeMesh {
 struct VolumeMeshInfo {
   RegularGrid grid;
   long inside_nodes = 0;   // grid nodes inside by the rule
-  long dropped_nodes = 0;  // of those, nearer to F = 0 than the margin
+  long dropped_nodes = 0;  // of those, nearer to F = 0 than the margin (pillow: left out of the
+                           // core to make it manifold)
   long removed_cells = 0;  // background cells removed by the touching-configuration cleanup and
                            // (margin > 0) where the inner cells were one cell thin
   long inner_cells = 0;    // background cells kept (the elements copied unchanged)
