@@ -82,14 +82,20 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
   (the boundary surface) and .png. Tetrahedra: the grid's cubes cut into 6 tetrahedra, those
   crossing F = 0 clipped at the roots of F on their edges (grid nodes within 0.2 of an edge
   from F = 0 moved onto it); no element is inverted, walls from 1.5 cells thick are kept.
-  Hexahedra (and --boundary projected): the grid cells wholly inside the body (nodes nearer
-  to F = 0 than the margin count as outside) are kept and each boundary facet and its
-  projection onto F = 0 make one hexahedron or a prism of 3 tetrahedra (seed 003's layer;
-  walls thinner than about 4 cells fold it). Then the interior nodes minimise seed 003's
-  corner functional (15), never folding an element further.
+  Hexahedra: one per inside grid node (dual to the grid) as a core inside the body, and one
+  pillow hexahedron from each of its boundary faces out to F = 0: the boundary nodes on
+  F = 0 but the few held short of it where a pillow would fold, walls down to a node layer
+  kept; where pillows stay folded after untangling (walls under a cell thick, oblique), the
+  dual hexahedra alone (the summary's "layer" line says which). --boundary projected: seed
+  003's layer: the grid cells wholly inside the body (nodes nearer to F = 0 than the margin
+  count as outside) are kept and each boundary facet and its projection onto F = 0 make one
+  hexahedron or a prism of 3 tetrahedra (walls thinner than about 4 cells are lost). Then
+  the interior nodes minimise seed 003's corner functional (15), never folding an element
+  further.
   --volume tet|hex       tetrahedra or hexahedra
-  --boundary cut|projected
-                         tetrahedra: the clipped grid (default) or seed 003's projected layer
+  --boundary B           tetrahedra: cut (the clipped grid, default) or projected (seed 003's
+                         layer); hexahedra: pillow (default, dual where pillows stay folded,
+                         which --boundary pillow refuses instead), dual or projected
   --margin M             projected layer: nodes nearer to F = 0 than M cells are outside
                          (default 0.35)
   --sweeps K             sweeps of the interior functional (default 8; seed 003: 8-10)

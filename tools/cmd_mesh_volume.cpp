@@ -74,10 +74,8 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
       (o.boundary == VolumeBoundary::dual || o.boundary == VolumeBoundary::pillow))
     throw UsageError("--margin applies to the projected layer, not --boundary " +
                      a.get("boundary"));
-  if (a.has("margin") && o.elements == VolumeElements::tetrahedra &&
-      o.boundary == VolumeBoundary::cut)
-    throw UsageError("--margin applies to the projected layer (--boundary projected or --volume "
-                     "hex)");
+  if (a.has("margin") && o.boundary == VolumeBoundary::cut)
+    throw UsageError("--margin applies to the projected layer (--boundary projected)");
   if (a.has("seed-rule")) { // seed 003's published configurations
     if (a.has("boundary") && o.boundary != VolumeBoundary::projected)
       throw UsageError("--seed-rule uses the projected layer, not --boundary " + a.get("boundary"));
@@ -164,6 +162,13 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
             << (info.inner_cells + info.layer_elements != m.C.rows() ? " before refinement" : "")
             << "), " << m.V.rows() << " nodes, " << m.B.rows()
             << (tets ? " boundary triangles" : " boundary quadrilaterals") << "\n";
+  if (!tets) {
+    const char* kName[] = {"cut", "projected", "dual", "pillow"};
+    std::cout << "  layer        " << kName[int(info.boundary)];
+    if (info.folded_pillows > 0)
+      std::cout << " (the pillow mesh kept " << info.folded_pillows << " folded elements)";
+    std::cout << "\n";
+  }
   std::cout << "  quality      dihedral angles " << fmt(q.min_dihedral_deg, 3) << " .. "
             << fmt(q.max_dihedral_deg, 4) << " deg (" << q.outside_10_170
             << " elements outside 10 .. 170), scaled Jacobian min " << fmt(q.min_scaled_jacobian, 3)
@@ -196,7 +201,7 @@ double two_digits_down(double x) {
 std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions& o) {
   const bool tets = o.elements == VolumeElements::tetrahedra;
   return "walls about " + fmt(info.coverage.thickness(), 3) +
-         (o.boundary == VolumeBoundary::dual || o.boundary == VolumeBoundary::pillow
+         (info.boundary == VolumeBoundary::dual || info.boundary == VolumeBoundary::pillow
               ? " thick (walls with no grid node, slivers under "
                 "held boundary points)"
               : " thick have no inner cell under the boundary "

@@ -51,7 +51,10 @@ py::dict volume_info_dict(const VolumeMeshInfo& i) {
       field("unprojected", &VolumeMeshInfo::unprojected), field("held", &VolumeMeshInfo::held),
       field("max_boundary_f", &VolumeMeshInfo::max_boundary_f),
       field("on_zero", &VolumeMeshInfo::on_zero), field("clipped", &VolumeMeshInfo::clipped),
-      field("suggested_cell", &VolumeMeshInfo::suggested_cell));
+      field("suggested_cell", &VolumeMeshInfo::suggested_cell),
+      field("folded_pillows", &VolumeMeshInfo::folded_pillows));
+  const char* kBoundary[] = {"cut", "projected", "dual", "pillow"};
+  d["boundary"] = kBoundary[int(i.boundary)];
   d["body_volume"] = i.coverage.body;
   d["lost_volume"] = i.coverage.lost;
   d["lost_thickness"] = i.coverage.thickness();
@@ -200,7 +203,8 @@ void bind_volume_meshes(py::module_& m) {
           v = volume_mesh(f, o, &info);
         }
         warn_lost_volume(info, o.elements == VolumeElements::tetrahedra,
-                         o.boundary == VolumeBoundary::dual);
+                         info.boundary == VolumeBoundary::dual ||
+                             info.boundary == VolumeBoundary::pillow);
         return py::make_tuple(std::move(v.V), std::move(v.C), std::move(v.B),
                               boundary_flags(v.boundary), volume_info_dict(info));
       },
@@ -212,8 +216,9 @@ void bind_volume_meshes(py::module_& m) {
 --volume): background cells inside, a boundary layer projected onto F = 0, smoothing ->
 (V (N, 3), C (E, 4) tetrahedra or (E, 8) hexahedra (VTK order) int32, B (K, 3 or 4) boundary
 facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetrahedra) "cut" (the
-grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer, as hexahedra by default);
-hexahedra "dual": one per inside grid node, corners at the cells' points on F = 0 (Zhang & Bajaj
+grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer); hexahedra "cut" (the
+default: "pillow", or "dual" where pillows stay folded; info["boundary"] says which and
+info["folded_pillows"] how many folded), "projected", "dual": one per inside grid node, corners at the cells' points on F = 0 (Zhang & Bajaj
 2006: walls one node layer thick kept; "tet" with "dual" raises ValueError); "pillow": dual
 hexahedra inside (made manifold) and one pillow layer out to F = 0 (Mitchell & Tautges 1995),
 the boundary nodes on F = 0 but those of pillows still folded after untangling (info["held"]);

@@ -119,7 +119,8 @@ def test_mesh_volume_boundary_choice_and_held_nodes():
     plate = rf.compile(rf.and0(0.4 ** 2 - s * s, rf.sphere(rf.x, rf.y, rf.z, 1.0)),
                        [[-1.2] * 3, [1.2] * 3])
     with pytest.warns(UserWarning, match="leaves out"):  # a skew plate 4 cells thin
-        V, C, B, on, info = interlin.mesh_volume(plate, "hex", cell=0.2, threads=1)
+        V, C, B, on, info = interlin.mesh_volume(plate, "hex", cell=0.2, threads=1,
+                                                 boundary="projected")
     assert interlin.volume_quality(V, C, threads=1)["inverted"] == 0
     assert info["held"] > 0 and info["max_boundary_f"] < 1e-8
     assert np.count_nonzero(np.abs(plate(V[on])) > 1e-8) <= info["held"]
@@ -137,11 +138,13 @@ def test_mesh_volume_reports_the_volume_the_layer_loses():
     r = rf.sqrt(rf.x * rf.x + rf.y * rf.y + rf.z * rf.z) - 0.25
     shell = rf.compile(0.05 ** 2 - r * r, [[-0.32] * 3, [0.32] * 3])
     with pytest.warns(UserWarning, match=r"leaves out .* use cell=0\.02.* or elements='tet'"):
-        V, C, B, on, info = interlin.mesh_volume(shell, "hex", cell=0.05, threads=1)
+        V, C, B, on, info = interlin.mesh_volume(shell, "hex", cell=0.05, threads=1,
+                                                 boundary="projected")
     assert info["lost_volume"] > 0.5 * info["body_volume"]
     assert info["lost_thickness"] == pytest.approx(0.1, rel=0.05)
     assert info["suggested_cell"] == pytest.approx(0.1 / 4.5, rel=0.05)
-    V, C, B, on, info = interlin.mesh_volume(shell, "hex", cell=info["suggested_cell"], threads=1)
+    V, C, B, on, info = interlin.mesh_volume(shell, "hex", cell=info["suggested_cell"], threads=1,
+                                             boundary="projected")
     assert info["lost_volume"] < 0.005 * info["body_volume"]
     assert interlin.volume_quality(V, C, threads=1)["volume"] == pytest.approx(
         info["body_volume"], rel=0.002)
@@ -173,3 +176,14 @@ def test_pillowed_hexahedra_put_every_boundary_node_on_the_sphere():
     assert q["volume"] == pytest.approx(4 / 3 * np.pi * 0.25 ** 3, rel=0.02)
     with pytest.raises(ValueError, match="hexahedra only"):
         interlin.mesh_volume(ball, "tet", boundary="pillow")
+
+
+def test_default_hexahedra_are_pillowed():
+    # The default hexahedral boundary is the pillow layer (dual where a pillow stays folded): on
+    # the ball every boundary node lies on F = 0 and info says which boundary the mesh has.
+    r = rf.sqrt(rf.x * rf.x + rf.y * rf.y + rf.z * rf.z)
+    ball = rf.compile(0.25 - r, [[-0.3] * 3, [0.3] * 3])
+    V, C, B, on, info = interlin.mesh_volume(ball, "hex", resolution=16, threads=1)
+    assert info["boundary"] == "pillow" and info["folded_pillows"] == 0
+    assert np.abs(np.linalg.norm(V[on], axis=1) - 0.25).max() < 1e-8
+    assert interlin.volume_quality(V, C, threads=1)["inverted"] == 0

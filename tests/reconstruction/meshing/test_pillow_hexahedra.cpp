@@ -243,3 +243,24 @@ TEST_CASE("volume_mesh: pillowed hexahedra of the shipped models have no inverte
     }
   }
 }
+
+TEST_CASE("volume_mesh: default hexahedra are pillowed, and dual where a pillow stays folded",
+          "[volume]") {
+  // The sphere: pillowed. A disc a cell thick with normal (0, 1, 1) (h = 0.08): its pillows fold
+  // (measured 183 inverted), so the default gives the dual mesh, which never folds.
+  VolumeMeshOptions o;
+  o.elements = VolumeElements::hexahedra;
+  o.cell = 0.125;
+  VolumeMeshInfo info;
+  const VolumeMesh ball = volume_mesh(test::sphere(1.0), o, &info);
+  CHECK(info.boundary == VolumeBoundary::pillow);
+  CHECK(info.folded_pillows == 0);
+  CHECK(volume_quality(ball.V, ball.C).inverted == 0);
+  o.cell = 0.08;
+  const VolumeMesh disc =
+      volume_mesh(test::thin_disc(Eigen::Vector3d(0, 1, 1).normalized(), 0.08), o, &info);
+  CHECK(info.boundary == VolumeBoundary::dual);
+  CHECK(info.folded_pillows > 0);
+  REQUIRE(disc.C.rows() > 0);
+  CHECK(volume_quality(disc.V, disc.C).inverted == 0);
+}

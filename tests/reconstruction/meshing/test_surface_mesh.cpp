@@ -369,7 +369,8 @@ TEST_CASE("surface_mesh rows at required_v are evaluated exactly there", "[mesh]
                                         0.5, 0.61, 0.7,   0.8, 0.9, 0.999};
   REQUIRE(vs.size() == Index(expected.size()));
   for (Index k = 0; k < vs.size(); ++k)
-    CHECK(vs(k) == Approx(expected[std::size_t(k)]).epsilon(0).margin(1e-15)); // uniform v0 + k h rounding
+    CHECK(vs(k) ==
+          Approx(expected[std::size_t(k)]).epsilon(0).margin(1e-15)); // uniform v0 + k h rounding
   for (double r : {0.61, 0.137, 0.5, 0.999}) {
     const Index k = std::find(vs.data(), vs.data() + vs.size(), r) - vs.data();
     REQUIRE(k < vs.size()); // the required value itself, bitwise

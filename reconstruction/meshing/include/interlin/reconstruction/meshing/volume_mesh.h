@@ -21,12 +21,13 @@ namespace interlin {
 
 enum class VolumeElements { tetrahedra, hexahedra };
 
-// How the tetrahedral mesh meets F = 0. cut (default): the grid's tetrahedra clipped at the roots
+// How the mesh meets F = 0. cut (default): tetrahedra: the grid's tetrahedra clipped at the roots
 // of F on their edges (cut_tetrahedra; no inverted element by construction, thin walls down to a
-// node layer kept). projected: seed 003's layer of prisms between the inner cells' boundary facets
-// and their copies projected onto F = 0 (hexahedra always use it; where a wall is thinner than
-// about 4 cells or parts touch it would invert elements: those nodes are held short of F = 0,
-// VolumeMeshInfo::held, and walls without inner cells are lost). dual (hexahedra only): one
+// node layer kept); hexahedra: pillow, or dual where pillows stay folded. projected: seed 003's
+// layer of prisms (hexahedra) between the inner cells' boundary facets and their copies
+// projected onto F = 0 (where a wall is thinner than about 4 cells or parts touch it would
+// invert elements: those nodes are held short of F = 0, VolumeMeshInfo::held, and walls without
+// inner cells are lost). dual (hexahedra only): one
 // hexahedron per inside grid node, its corners the points of the 8 cells around it, on F = 0 for
 // cells cut by the surface (dual_hexahedra, Zhang & Bajaj 2006): walls down to one node layer
 // keep their volume, each side on its own cells' points. pillow (hexahedra only): the dual
@@ -38,8 +39,10 @@ enum class VolumeBoundary { cut, projected, dual, pillow };
 
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
-  VolumeBoundary boundary = VolumeBoundary::cut; // tetrahedra: cut or projected; hexahedra:
-                                                 // projected (cut means it too), dual or pillow
+  // Tetrahedra: cut or projected. Hexahedra: cut (the default) means pillow, and dual where the
+  // pillow mesh keeps a folded element (VolumeMeshInfo::boundary, folded_pillows); or projected,
+  // dual or pillow.
+  VolumeBoundary boundary = VolumeBoundary::cut;
   Eigen::AlignedBox3d box; // region (the grid covers it); empty: the function's own box
   int resolution = 64;     // cells along the box's longest side (grid_with_resolution) ...
   double cell = 0;         // ... unless a cell size h > 0 is given (grid_with_cell)
@@ -69,6 +72,10 @@ struct VolumeMesh {
 
 struct VolumeMeshInfo {
   RegularGrid grid;
+  VolumeBoundary boundary = VolumeBoundary::cut; // the boundary the mesh has (default hexahedra:
+                                                 // pillow or dual)
+  long folded_pillows = 0; // default hexahedra: the pillow mesh's inverted elements, for which it
+                           // was replaced by the dual one (0: pillows kept)
   long inside_nodes = 0;   // grid nodes inside by the rule
   long dropped_nodes = 0;  // of those, nearer to F = 0 than the margin (pillow: left out of the
                            // core to make it manifold)
@@ -138,10 +145,12 @@ constexpr double kCellsAcrossDualWall = 2;
 // epsilon, nodes on internal zero sheets inside; the boundary nodes are roots of F on grid edges,
 // warped grid nodes among them) and keep their boundary fixed in step (4); every smoothing step
 // only accepts node moves that fold no further element corner. The seed's published configurations
-// (margin 0, tetrahedra with the strict rule, hexahedra with the inclusive one) give its counts:
-// 2158 boundary nodes and 4332 facets, 3064 and 3072. Hexahedra with o.boundary == dual or pillow
-// replace steps (2)-(3) by dual_hexahedra or pillowed_hexahedra (the latter untangled before step
-// (4): core points free, surface points sliding on F = 0). Inputs:  f (value; gradient when
+// (projected layer, margin 0, tetrahedra with the strict rule, hexahedra with the inclusive one)
+// give its counts: 2158 boundary nodes and 4332 facets, 3064 and 3072. Hexahedra with o.boundary ==
+// dual or pillow replace steps (2)-(3) by dual_hexahedra or pillowed_hexahedra (the latter
+// untangled before step (4): core points free, surface points sliding on F = 0); by default
+// (o.boundary == cut) hexahedra are pillowed, and made dual instead when a pillow stays folded.
+// Inputs:  f (value; gradient when
 // available, else central differences, for the margin),
 //          o (std::invalid_argument for no box, bad resolution/cell, margin outside [0, 1))
 // Output:  the mesh; info optional
