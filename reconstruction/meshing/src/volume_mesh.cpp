@@ -5,6 +5,7 @@
 #include "interlin/reconstruction/meshing/dual_hexahedra.h"
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
+#include "interlin/reconstruction/meshing/volume_quality.h"
 
 #include "corner_jacobian.h"
 #include "parallel.h"
@@ -654,16 +655,20 @@ VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const V
 }
 
 // The default hexahedra: pillowed (every boundary node on F = 0 but the few held, the volume of
-// walls down to a node layer), or, where a pillow stays folded, dual (never folded: its points
-// are held until every corner's scaled Jacobian is 0.2).
+// walls down to a node layer), or, where a pillow stays folded at a corner or at its centre
+// (a scaled Jacobian <= 0: the trilinear map folds inside though every corner is convex; the
+// impeller at 24 cells, the UAV at 0.045), dual (its points are held until every corner's scaled
+// Jacobian is 0.2).
 VolumeMesh default_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
                              const VolumeMeshOptions& o, VolumeMeshInfo& out) {
   VolumeMesh vm = pillow_mesh(f, g, o, out);
   out.boundary = VolumeBoundary::pillow;
-  const Eigen::MatrixXd A = vm.C.rows() > 0 ? corner_alphas(vm.V, vm.C) : Eigen::MatrixXd(0, 8);
-  long folded = 0;
-  for (long e = 0; e < A.rows(); ++e)
-    folded += !(A.row(e).minCoeff() > 0);
+  std::vector<ElementQuality> per;
+  if (vm.C.rows() > 0)
+    volume_quality(vm.V, vm.C, o.threads, &per);
+  const long folded = std::count_if(per.begin(), per.end(), [](const ElementQuality& e) {
+    return e.inverted || !(e.scaled_jacobian > 0);
+  });
   if (folded == 0)
     return vm;
   if (o.progress)

@@ -74,8 +74,9 @@ struct VolumeMeshInfo {
   RegularGrid grid;
   VolumeBoundary boundary = VolumeBoundary::cut; // the boundary the mesh has (default hexahedra:
                                                  // pillow or dual)
-  long folded_pillows = 0; // default hexahedra: the pillow mesh's inverted elements, for which it
-                           // was replaced by the dual one (0: pillows kept)
+  long folded_pillows = 0; // default hexahedra: the pillow mesh's elements folded at a corner or
+                           // at the centre (scaled Jacobian <= 0), for which it was replaced by
+                           // the dual one (0: pillows kept)
   long inside_nodes = 0;   // grid nodes inside by the rule
   long dropped_nodes = 0;  // of those, nearer to F = 0 than the margin (pillow: left out of the
                            // core to make it manifold)
