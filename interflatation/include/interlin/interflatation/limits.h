@@ -41,10 +41,11 @@ inline constexpr long long mesh_triangles = 20'000'000;
 inline constexpr long long grid_nodes = 1'100'000'000;
 // interlin mesh --volume, memory: elements the grid's cells could hold (6 tetrahedra or 1
 // hexahedron per cell; an upper bound, checked before any work). The command peaks at about 160
-// bytes per tetrahedron and 320 per hexahedron (a box-filling cuboid at resolutions 24 to 64), so
-// both defaults mean about 4 GB when the body fills the grid; --max-elements.
+// bytes per tetrahedron (a box-filling cuboid at resolutions 24 to 64) and 720-810 per hexahedron
+// (resolutions 64 to 96, pillowed or projected: the coverage measurement clips 6 tetrahedra per
+// cell), so both defaults mean about 4 GB when the body fills the grid; --max-elements.
 inline constexpr long long volume_tetrahedra = 25'000'000;
-inline constexpr long long volume_hexahedra = 12'500'000;
+inline constexpr long long volume_hexahedra = 5'000'000;
 // interlin implicit, memory: nodes of the model's grid, counted before any work as for a cube
 // box, (resolution + 5)^3 (the grid reaches two cells beyond the box). Building a section body
 // peaks at about 1 KB per node (resolutions 32 to 128), so about 4 GB; --max-grid-nodes.
