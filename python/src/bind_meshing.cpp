@@ -218,8 +218,9 @@ void bind_volume_meshes(py::module_& m) {
 facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetrahedra) "cut" (the
 grid's tetrahedra clipped at F = 0) or "projected" (the seed's layer); hexahedra "cut" (the
 default: "pillow", or "dual" where pillows stay folded; info["boundary"] says which and
-info["folded_pillows"] how many folded), "projected", "dual": one per inside grid node, corners at the cells' points on F = 0 (Zhang & Bajaj
-2006: walls one node layer thick kept; "tet" with "dual" raises ValueError); "pillow": dual
+info["folded_pillows"] how many folded), "projected", "dual": one per inside grid node, corners
+at the cells' points on F = 0 (Zhang & Bajaj 2006: walls one node layer thick kept; "tet" with
+"dual" raises ValueError); "pillow": dual
 hexahedra inside (made manifold) and one pillow layer out to F = 0 (Mitchell & Tautges 1995),
 the boundary nodes on F = 0 but those of pillows still folded after untangling (info["held"]);
 folds may remain on walls under a cell thick: check volume_quality(V, C)["inverted"];

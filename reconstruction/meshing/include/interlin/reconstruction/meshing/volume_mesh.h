@@ -34,7 +34,8 @@ enum class VolumeElements { tetrahedra, hexahedra };
 // hexahedra as a core inside the body and one layer of hexahedra between its boundary and F = 0
 // (pillowed_hexahedra; the core made manifold, the surface points split by side where a wall is
 // one node layer thick): every boundary node on F = 0 but the few held short of it where a pillow
-// stays folded after untangling (0-1.1 % on the shipped models; docs/benchmarks.md).
+// stays folded after untangling (0-1 % on the shipped models at their benchmark cells, 3.8 % on
+// the valve at 0.1, which still folds; docs/benchmarks.md).
 enum class VolumeBoundary { cut, projected, dual, pillow };
 
 struct VolumeMeshOptions {
