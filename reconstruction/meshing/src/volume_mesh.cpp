@@ -153,18 +153,36 @@ void split_prism(const int b[3], const int t[3], std::array<std::array<int, 4>, 
       out[size_t(k)][size_t(j)] = v[local[k][j]];
 }
 
-// Nodes flagged movable of elements with a corner alpha <= 0 go back to where they were in
-// `before` (a valid mesh), until no element is folded: surface smoothing may slide a node of a cut
+// The elements folded at a corner (alpha <= 0) or, hexahedra, at the centre (the trilinear map's
+// Jacobian <= 0 there, though every corner may be convex: volume_quality counts both).
+std::vector<char> folded_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C) {
+  const Eigen::MatrixXd A = corner_alphas(V, C);
+  std::vector<char> folded(size_t(C.rows()));
+  for (long e = 0; e < C.rows(); ++e) {
+    bool f = !(A.row(e).minCoeff() > 0);
+    if (!f && C.cols() == 8) {
+      Eigen::Vector3d p[8];
+      for (int j = 0; j < 8; ++j)
+        p[j] = V.row(C(e, j)).transpose();
+      f = !(detail::centre_jacobian(p) > 0);
+    }
+    folded[size_t(e)] = f;
+  }
+  return folded;
+}
+
+// Nodes flagged movable of folded elements (folded_elements) go back to where they were in
+// `before` (a valid mesh), until none is folded: surface smoothing may slide a node of a cut
 // grid's small element across its opposite face, interior smoothing one beside a held layer
 // element across it. Returns the nodes put back.
 long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& movable,
                     const Eigen::MatrixXi& C, Eigen::MatrixXd& V) {
   long restored = 0;
   for (;;) {
-    const Eigen::MatrixXd A = corner_alphas(V, C);
+    const std::vector<char> folded = folded_elements(V, C);
     long moved = 0;
     for (long e = 0; e < C.rows(); ++e) {
-      if (A.row(e).minCoeff() > 0)
+      if (!folded[size_t(e)])
         continue;
       for (long j = 0; j < C.cols(); ++j) {
         const int v = C(e, j);
@@ -226,15 +244,15 @@ std::vector<std::vector<Eigen::RowVector3d>> layer_corner_normals(const Eigen::M
   return out;
 }
 
-// Flags the layer nodes n_inner + r (in[r], #n_top) of the elements with a corner alpha <= 0.
+// Flags the layer nodes n_inner + r (in[r], #n_top) of the folded elements (folded_elements).
 // Returns whether there is one.
 bool folded_layer_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, long n_inner,
                         long n_top, std::vector<char>& in) {
-  const Eigen::MatrixXd A = corner_alphas(V, C);
+  const std::vector<char> folded = folded_elements(V, C);
   in.assign(size_t(n_top), 0);
   bool any = false;
   for (long e = 0; e < C.rows(); ++e)
-    if (!(A.row(e).minCoeff() > 0))
+    if (folded[size_t(e)])
       for (long j = 0; j < C.cols(); ++j)
         if (C(e, j) >= n_inner)
           in[size_t(C(e, j) - n_inner)] = 1, any = true;

@@ -115,6 +115,21 @@ TEST_CASE("Element quality of the regular tetrahedron, the cube and distorted el
   CHECK(element_quality(F).inverted);
 }
 
+TEST_CASE("A hexahedron folded at its centre with 8 convex corners counts as inverted",
+          "[volume]") {
+  // Found by random search from the unit cube: every corner alpha > 0.4, but the trilinear map's
+  // Jacobian at the centre (the principal axes) is negative, so the element overlaps itself.
+  Eigen::MatrixXd P(8, 3);
+  P << -0.07, 0.2, -0.7, 0.7, -0.26, -0.73, 0.48, 0.75, 0.81, 1.4, -0.5, 1.27, //
+      -0.57, -0.34, 1.21, 0.58, 0.3, 1.4, 1.91, 1.66, 0.84, 0.54, 1.6, 0.72;
+  const Eigen::MatrixXi C = Eigen::RowVectorXi::LinSpaced(8, 0, 7);
+  CHECK(corner_alphas(P, C).minCoeff() > 0.4);
+  const ElementQuality q = element_quality(P);
+  CHECK(q.scaled_jacobian < 0);
+  CHECK(q.inverted);
+  CHECK(volume_quality(P, C).inverted == 1);
+}
+
 TEST_CASE("Local smoothing untangles a randomly distorted hexahedral grid", "[volume][smooth]") {
   Eigen::MatrixXd V;
   Eigen::MatrixXi C;

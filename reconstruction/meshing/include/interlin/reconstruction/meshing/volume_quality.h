@@ -17,7 +17,8 @@ struct ElementQuality {
   // inscribed and circumscribed spheres of a general hexahedron): NaN.
   double radius_ratio = 0;
   double volume = 0;     // signed; hexahedra: the trilinear element's exact volume
-  bool inverted = false; // some corner's alpha (triple product of its edges) <= 0
+  bool inverted = false; // some corner's alpha (triple product of its edges) <= 0, or
+                         // (hexahedra) the Jacobian at the centre <= 0
 };
 
 // One element. Inputs: P 4 by 3 (tetrahedron, (p1 - p0) x (p2 - p0) . (p3 - p0) > 0 when valid)
