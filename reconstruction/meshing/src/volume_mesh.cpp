@@ -5,7 +5,6 @@
 #include "interlin/reconstruction/meshing/dual_hexahedra.h"
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
-#include "interlin/reconstruction/meshing/volume_quality.h"
 
 #include "corner_jacobian.h"
 #include "parallel.h"
@@ -681,12 +680,8 @@ VolumeMesh default_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
                              const VolumeMeshOptions& o, VolumeMeshInfo& out) {
   VolumeMesh vm = pillow_mesh(f, g, o, out);
   out.boundary = VolumeBoundary::pillow;
-  std::vector<ElementQuality> per;
-  if (vm.C.rows() > 0)
-    volume_quality(vm.V, vm.C, o.threads, &per);
-  const long folded = std::count_if(per.begin(), per.end(), [](const ElementQuality& e) {
-    return e.inverted || !(e.scaled_jacobian > 0);
-  });
+  const std::vector<char> flags = folded_elements(vm.V, vm.C);
+  const long folded = std::count(flags.begin(), flags.end(), char(1));
   if (folded == 0)
     return vm;
   if (o.progress)
