@@ -22,6 +22,9 @@ constexpr double kSliceGapRatio = 4;
 constexpr Index kMinSlicePoints = 8; // fewer cannot be fitted by a closed cubic with smoothing
 // order_profile: the ends of the chord (this fraction of it) are ordered by angle (noses).
 constexpr double kNoseZone = 0.1;
+// order_profile: chord bins whose offset range is below this share of the median range hold one
+// side only and do not place the mean line.
+constexpr double kTwoSided = 0.5;
 
 // Density fallback (noisy slices, where tail gaps inside the slices rival the gaps between
 // them): stations are split at the valleys of their kernel density estimate (Gaussian kernel of
@@ -305,9 +308,18 @@ std::vector<Index> order_profile(const Eigen::MatrixX2d& P) {
     lo[size_t(bin(s(i)))] = std::min(lo[size_t(bin(s(i)))], w(i));
     hi[size_t(bin(s(i)))] = std::max(hi[size_t(bin(s(i)))], w(i));
   }
+  // Only bins that hold both sides: randomly placed points leave some bins with points of one
+  // side alone, whose midpoint would cut that side (their offset range is the side's slope over
+  // the bin, well under the profile's thickness; kept: at least kTwoSided of the median range).
+  std::vector<double> range;
+  for (int k = 0; k < bins; ++k)
+    if (lo[size_t(k)] <= hi[size_t(k)])
+      range.push_back(hi[size_t(k)] - lo[size_t(k)]);
+  std::nth_element(range.begin(), range.begin() + Index(range.size() / 2), range.end());
+  const double least = kTwoSided * range[range.size() / 2];
   std::vector<double> xs, mid;
   for (int k = 0; k < bins; ++k)
-    if (lo[size_t(k)] <= hi[size_t(k)]) {
+    if (lo[size_t(k)] <= hi[size_t(k)] && hi[size_t(k)] - lo[size_t(k)] >= least) {
       xs.push_back((k + 0.5) / bins);
       mid.push_back(0.5 * (lo[size_t(k)] + hi[size_t(k)]));
     }

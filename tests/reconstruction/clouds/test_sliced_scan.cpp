@@ -98,33 +98,39 @@ TEST_CASE("detect_slices finds planar and radial families and rejects unstructur
         SliceKind::none);
 }
 
+// A family: thickness 0.04 to 0.3, twist and camber of four span stations, 150 to 1000 random
+// points, 40 seeds. Random points leave some chord bins with points of one side only; before
+// order_profile left those bins out of its mean line, seeds 12 and 37 of the 0.04 profiles failed.
 TEST_CASE("order_profile walks around a thin cambered profile", "[clouds][slices]") {
-  for (double thick : {0.04, 0.1, 0.3}) {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> U(0, 2 * M_PI);
-    const int n = 400;
-    std::vector<double> theta(n);
-    Eigen::MatrixX2d P(n, 2);
-    for (int i = 0; i < n; ++i) {
-      theta[size_t(i)] = U(rng);
-      P.row(i) = profile(theta[size_t(i)], 0.5, thick).transpose();
-    }
-    const std::vector<Index> order = order_profile(P);
-    REQUIRE(order.size() == size_t(n));
-    // consecutive points are neighbours on the profile: their angle steps are all one sign (up to
-    // the wrap) and sum to one turn
-    double turn = 0;
-    int backwards = 0;
-    for (int i = 0; i < n; ++i) {
-      const double d = std::remainder(
-          theta[size_t(order[size_t((i + 1) % n)])] - theta[size_t(order[size_t(i)])], 2 * M_PI);
-      turn += d;
-      backwards += d * turn < 0;
-    }
-    INFO("thickness " << thick);
-    CHECK(std::abs(std::abs(turn) - 2 * M_PI) < 1e-9);
-    CHECK(backwards == 0);
-  }
+  for (double thick : {0.04, 0.1, 0.3})
+    for (double t : {0.0, 3.0 / 7, 0.5, 1.0})
+      for (int n : {150, 400, 1000})
+        for (unsigned seed = 1; seed <= 40; ++seed) {
+          std::mt19937 rng(seed);
+          std::uniform_real_distribution<double> U(0, 2 * M_PI);
+          std::vector<double> theta(static_cast<size_t>(n), 0.0);
+          Eigen::MatrixX2d P(n, 2);
+          for (int i = 0; i < n; ++i) {
+            theta[size_t(i)] = U(rng);
+            P.row(i) = profile(theta[size_t(i)], t, thick).transpose();
+          }
+          const std::vector<Index> order = order_profile(P);
+          REQUIRE(order.size() == size_t(n));
+          // consecutive points are neighbours on the profile: their angle steps are all one sign
+          // (up to the wrap) and sum to one turn
+          double turn = 0;
+          int backwards = 0;
+          for (int i = 0; i < n; ++i) {
+            const double d = std::remainder(theta[size_t(order[size_t((i + 1) % n)])] -
+                                                theta[size_t(order[size_t(i)])],
+                                            2 * M_PI);
+            turn += d;
+            backwards += d * turn < 0;
+          }
+          INFO("thickness " << thick << ", span " << t << ", " << n << " points, seed " << seed);
+          CHECK(std::abs(std::abs(turn) - 2 * M_PI) < 1e-9);
+          CHECK(backwards == 0);
+        }
 }
 
 TEST_CASE("fitted sections follow the exact profiles within 1.5 sigma and the loft contains them",
