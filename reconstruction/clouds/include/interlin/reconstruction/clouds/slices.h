@@ -40,7 +40,8 @@ SliceFamily detect_slices(const Eigen::MatrixX3d& P, SliceKind kind = SliceKind:
 
 // Orders the points of one closed, airfoil-like profile (P #P by 2, in its slice's plane) around
 // it: both sides are graphs over the longest chord, split by the mean line (midpoints of the
-// extreme offsets in bins along the chord), and each nose (the last 10 % of the chord at either
+// extreme offsets in bins along the chord, from the bins that hold both sides: offset range at
+// least half the median), and each nose (the last 10 % of the chord at either
 // end) is star-shaped from the mean line's point where it starts. Output: #P row indices, around
 // the profile (one side by increasing chord position, the other by decreasing position, the
 // noses by angle).
