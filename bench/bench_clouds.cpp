@@ -188,11 +188,13 @@ struct Reconstruction {
 };
 
 // Kept apart from the point cloud: the slices' family and noise come from the points alone.
-void reconstruct_sectioned(const PointCloud& c, Reconstruction& r) {
+void reconstruct_sectioned(const PointCloud& c, int threads, Reconstruction& r) {
   const SliceFamily family = detect_slices(c.points);
   if (family.kind == SliceKind::none)
     throw std::runtime_error("no slices detected");
-  const SlicedFit fit = fit_sliced_scan(c.points, family);
+  SliceFitOptions fo;
+  fo.threads = threads;
+  const SlicedFit fit = fit_sliced_scan(c.points, family, fo);
   SurfaceMeshOptions so;
   so.nu = 1200;
   so.nv = 200;
@@ -217,7 +219,7 @@ Reconstruction reconstruct(const Method& m, const PointCloud& c, int threads) {
     mo.threads = threads;
     implicit_mesh(r.implicit, mo, r.V, r.F);
   } else if (m.kind == Method::sectioned) {
-    reconstruct_sectioned(c, r);
+    reconstruct_sectioned(c, threads, r);
   } else if (m.kind == Method::pcl) {
     pcl_poisson(c.points, c.normals, m.depth, threads, r.V, r.F);
   } else {

@@ -64,6 +64,7 @@ void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& fami
   unused(a, {"max-depth"}, "it applies to the unstructured fit", progress);
   SliceFitOptions so;
   so.noise = noise;
+  so.threads = bo.threads;
   so.progress = progress;
   progress("fitting " + std::to_string(family.members.size()) + " sections");
   const SlicedFit fit = fit_sliced_scan(c.points, family, so);

@@ -104,6 +104,7 @@ ImplicitModel sliced_body(const PointCloud& c, const SliceFamily& family, double
                           SectionBodyOptions o) {
   SliceFitOptions so;
   so.noise = noise;
+  so.threads = o.threads;
   so.progress = o.progress;
   SlicedFit fit;
   SectionBodyBuild b;

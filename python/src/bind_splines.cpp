@@ -111,8 +111,10 @@ knots optional periodic knot vector (periodic_knots).)");
       "approximate_curve",
       [](const MatrixXd& P, int degree, bool closed, int num_ctrl, double smoothing,
          double tolerance, double parameter_exponent) {
-        return approximate_curve(
-            P, {degree, closed, num_ctrl, smoothing, tolerance, parameter_exponent, {}});
+        ApproximationOptions o;
+        o.degree = degree, o.closed = closed, o.num_ctrl = num_ctrl, o.smoothing = smoothing;
+        o.tolerance = tolerance, o.parameter_exponent = parameter_exponent;
+        return approximate_curve(P, o);
       },
       py::arg("P"), py::arg("degree") = 3, py::arg("closed") = false, py::arg("num_ctrl") = 0,
       py::arg("smoothing") = 0.0, py::arg("tolerance") = 0.0, py::arg("parameter_exponent") = 1.0,

@@ -38,18 +38,24 @@ VectorXd approximation_knots(const VectorXd& u, int p, Index n) {
   return t;
 }
 
-// Periodic knots for n distinct control points: one period [u_0, u_N] split at parameter
-// quantiles, extended periodically on both sides.
-VectorXd periodic_quantile_knots(const VectorXd& u, int p, Index n) {
+// Periodic knots for n distinct control points: one period [u_0, u_N] split where the
+// cumulative weight of the parameter intervals (w_i on [u_i, u_{i+1}], linear inside; empty w:
+// all 1, the parameter quantiles) reaches j / n of its total, extended periodically on both sides.
+VectorXd periodic_quantile_knots(const VectorXd& u, int p, Index n, const VectorXd& w) {
   const Index N = u.size() - 1;
-  if (n == N)
+  if (n == N && w.size() == 0)
     return periodic_knots(u, p); // interpolation: sites (odd p) or midpoints (even p)
   const double period = u(N) - u(0);
+  VectorXd W(N + 1); // W(i): weight of the intervals before u_i
+  W(0) = 0;
+  for (Index i = 0; i < N; ++i)
+    W(i + 1) = W(i) + (w.size() != 0 ? w(i) : 1.0);
   VectorXd tau(n);
-  for (Index j = 0; j < n; ++j) {
-    const double x = double(j) * double(N) / double(n);
-    const Index i = std::min<Index>(static_cast<Index>(std::floor(x)), N - 1);
-    tau(j) = u(i) + (x - double(i)) * (u(i + 1) - u(i));
+  for (Index j = 0, i = 0; j < n; ++j) {
+    const double x = double(j) * W(N) / double(n);
+    while (i + 1 < N && W(i + 1) <= x)
+      ++i;
+    tau(j) = u(i) + (x - W(i)) / (W(i + 1) - W(i)) * (u(i + 1) - u(i));
   }
   VectorXd t(n + 2 * p + 1);
   for (Index k = 0; k < t.size(); ++k) {
@@ -135,6 +141,11 @@ Approximation approximate_curve(const MatrixXd& P, const ApproximationOptions& o
         std::to_string(p + 1) + ", " + std::to_string(N) + "]");
   if (!(o.knot_grid >= 0) || !std::isfinite(o.knot_grid) || (o.knot_grid > 0 && !o.closed))
     throw std::invalid_argument("curve approximation: knot_grid must be >= 0 (closed curves only)");
+  if (o.knot_weights.size() != 0 &&
+      (!o.closed || o.knot_weights.size() != N || !(o.knot_weights.array() > 0).all() ||
+       !o.knot_weights.allFinite()))
+    throw std::invalid_argument(
+        "curve approximation: knot_weights must be #points positive weights (closed curves only)");
   if (o.parameters.size() != 0 && o.parameters.size() != N + (o.closed ? 1 : 0))
     throw std::invalid_argument("curve approximation: " + std::to_string(o.parameters.size()) +
                                 " parameters for " + std::to_string(N) + " points");
@@ -152,7 +163,8 @@ Approximation approximate_curve(const MatrixXd& P, const ApproximationOptions& o
     BSplineCurve c;
     c.degree = p;
     c.periodic = o.closed;
-    c.knots = o.closed ? periodic_quantile_knots(u, p, n) : approximation_knots(u, p, n);
+    c.knots =
+        o.closed ? periodic_quantile_knots(u, p, n, o.knot_weights) : approximation_knots(u, p, n);
     if (o.knot_grid > 0)
       c.knots = round_knots(c.knots, o.knot_grid, u(0), u(N) - u(0));
     const SplineBasis B = explicit_basis(c.knots, p);

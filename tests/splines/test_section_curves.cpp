@@ -213,6 +213,39 @@ TEST_CASE("Curve approximation rejects bad options", "[splines][approximation]")
   CHECK_THROWS_WITH(approximate_curve(P, o), Catch::Contains("finite"));
 }
 
+// knot_weights: the knots split the cumulative interval weight evenly. Points at u = i / 16 with
+// weight 3 on the first half and 1 on the second: the weight reaches 24 of 32 at u = 1/2, so 8
+// control points put knots at 4j / 48 for j <= 6 (0, 1/12, ..., 1/2) and at 1/2 + 4 / 16 = 3/4;
+// weights all 1 give the parameter quantiles, as no weights do.
+TEST_CASE("Curve approximation: knots spaced by interval weights", "[splines][approximation]") {
+  const Index N = 16;
+  MatrixXd P(N, 2);
+  for (Index i = 0; i < N; ++i)
+    P.row(i) << std::cos(2 * M_PI * double(i) / N), std::sin(2 * M_PI * double(i) / N);
+  ApproximationOptions o;
+  o.closed = true;
+  o.num_ctrl = 8;
+  o.parameters = VectorXd::LinSpaced(N + 1, 0, 1);
+  const Approximation even = approximate_curve(P, o);
+  o.knot_weights = VectorXd::Ones(N);
+  CHECK(approximate_curve(P, o).curve.knots == even.curve.knots);
+  o.knot_weights.head(N / 2).setConstant(3);
+  const VectorXd t = approximate_curve(P, o).curve.knots;
+  const int p = 3; // the period's knots start at index p
+  for (int j = 0; j <= 6; ++j)
+    CHECK(t(p + j) == Approx(4.0 * j / 48).margin(1e-15));
+  CHECK(t(p + 7) == Approx(0.75).margin(1e-15));
+  CHECK(t(p + 8) == Approx(1.0).margin(1e-15));
+  o.knot_weights(2) = 0;
+  CHECK_THROWS_WITH(approximate_curve(P, o), Catch::Contains("positive"));
+  o.knot_weights = VectorXd::Ones(N - 1);
+  CHECK_THROWS_WITH(approximate_curve(P, o), Catch::Contains("knot_weights"));
+  o.knot_weights = VectorXd::Ones(N);
+  o.closed = false;
+  o.parameters = VectorXd::LinSpaced(N, 0, 1);
+  CHECK_THROWS_WITH(approximate_curve(P, o), Catch::Contains("closed curves only"));
+}
+
 // knot_grid: separately fitted closed curves share knot values (multiples of the grid), so their
 // knot union has no span shorter than the grid; the fit moves by far less than the noise.
 TEST_CASE("Curve approximation: knots on a grid", "[splines][approximation]") {

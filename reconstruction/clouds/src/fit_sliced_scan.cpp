@@ -1,6 +1,7 @@
 #include "interlin/reconstruction/clouds/fit_sliced_scan.h"
 
 #include "interlin/interlineation/interlinate_curves.h"
+#include "interlin/reconstruction/meshing/parallel_for.h"
 #include "interlin/splines/approximate_curve.h"
 #include "interlin/splines/knot_insertion.h"
 #include "interlin/splines/parameterization.h"
@@ -8,6 +9,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <stdexcept>
 
 namespace interlin {
@@ -22,12 +25,28 @@ constexpr int kSmoothingHalfWidth = 3; // parameters: moving average over 7 orde
 // Section samples (FittedSection::section), evenly spaced by arc length: at least 400 and 8 per
 // control point.
 constexpr int kMinSamples = 400, kSamplesPerControl = 8;
-// The rms residual to reach, in sigma: sqrt(2) for the in-plane residual of isotropic noise,
-// with 6 % for the parameters' own error.
-constexpr double kResidualRatio = 1.5;
 // At least this many points per control point: randomly spaced points leave knot spans nearly
 // empty when there are more control points, and the curve oscillates between the points.
 constexpr Index kPointsPerControl = 4;
+// Knots weighted by the turning angle (turning_weights): every span holds at least this many
+// points' share of the weight.
+constexpr Index kPointsPerSpan = 3;
+// Knot weights: each interval's share of the arc length plus this times its share of the
+// turning angle (measured 0, 1 and 2: 0 loses 3x on the section family, 2 loses 17 % there and
+// gains 11 % on Rotor 37); the first reference curve has this many control points, knots even.
+constexpr double kTurningShare = 1.0;
+constexpr Index kPilotControl = 32;
+// Shape passes: parameters from the feet on the reference curve, then a new reference.
+constexpr int kShapePasses = 2;
+// least_cp stops after this many counts in a row without a lower C_p.
+constexpr int kRisesToStop = 3;
+// Degrees of freedom per control point in C_p: two coordinates, doubled because the feet let the
+// curve slide along the points as well (measured: 1, 2, 3, 4 and 6 on the section family and
+// the Rotor 37 slices, docs/benchmarks.md; 4 was best on both, 3 and 6 within 4 %).
+constexpr Index kDofPerControl = 4;
+// Foot points: Newton steps and the largest step (share of the period).
+constexpr int kNewtonSteps = 3;
+constexpr double kMaxNewtonStep = 0.01;
 // Knots of every fitted section on multiples of 2^-16 of the parameter period: the sections'
 // knot union then has no spans shorter than that (the loft snaps its parameters at 1e-5 for the
 // same reason: spans well inside the range where the explicit basis is exact to round-off), and
@@ -141,31 +160,176 @@ void align_trailing_edges(std::vector<Eigen::VectorXd>& s, const std::vector<Ind
   }
 }
 
-// A closed cubic through the points at parameters u with `control` control points, knots on the
-// grid.
-Approximation refit_profile(const MatrixXd& points, const Eigen::VectorXd& u, Index control) {
+// Interval weights for the knots at parameters t (#t - 1 intervals) of curve c: each interval's
+// share of the arc length plus kTurningShare times its share of the turning angle, so that knots
+// crowd where the profile turns (the noses, which evenly spaced knots fit only with many control
+// points everywhere, letting the noise through).
+Eigen::VectorXd turning_weights(const BSplineCurve& c, const Eigen::VectorXd& t) {
+  const MatrixXd C = evaluate(c, t), T = evaluate(c, t, 1);
+  const Index n = t.size() - 1;
+  Eigen::VectorXd ds(n), dtheta(n);
+  for (Index i = 0; i < n; ++i) {
+    ds(i) = (C.row(i + 1) - C.row(i)).norm();
+    const double cosine = T.row(i).normalized().dot(T.row(i + 1).normalized());
+    dtheta(i) = std::acos(std::clamp(cosine, -1.0, 1.0));
+  }
+  return ds / std::max(ds.sum(), 1e-300) + kTurningShare * dtheta / std::max(dtheta.sum(), 1e-300);
+}
+
+// A closed cubic through the points at parameters u (#P + 1, increasing from 0 to 1) with
+// `control` control points, knots on the grid, spaced by the interval weights w (empty: evenly by
+// point count), capped at #P / (kPointsPerSpan control) times the even weight per point, so that
+// every span holds kPointsPerSpan points, and so that no span is shorter than 4 grid steps.
+// Throws as approximate_curve when the points of a span share too few parameters (feet gathered
+// by a curve that loops through the noise).
+Approximation weighted_fit(const MatrixXd& P, const Eigen::VectorXd& u, Index control,
+                           const Eigen::VectorXd& w) {
   ApproximationOptions o;
   o.degree = 3;
   o.closed = true;
   o.parameters = u;
   o.knot_grid = kKnotGrid;
   o.num_ctrl = int(control);
-  return approximate_curve(points, o);
+  if (w.size() != 0) { // at most K times the even weight per point, spans >= 4 grid steps long
+    const double K = double(P.rows()) / double(kPointsPerSpan * control), W = w.sum();
+    const double Ku = 1 / (4 * kKnotGrid * double(control));
+    o.knot_weights.resize(w.size());
+    for (Index i = 0; i < w.size(); ++i)
+      o.knot_weights(i) =
+          std::min({w(i), K * W / double(w.size()), Ku * W * (u(i + 1) - u(i))}) + 1e-12 * W;
+  }
+  return approximate_curve(P, o);
 }
 
-// Discrepancy principle: the fewest control points (8, 16, ... n / kPointsPerControl) whose rms
-// residual is within kResidualRatio sigma (in-plane residuals of isotropic noise: sqrt(2) sigma); a
-// floor of 1e-7 of the profile's size stands for round-off when the noise is 0. Output: a closed
-// (periodic) cubic with knots on the grid.
-Approximation fit_profile(const MatrixXd& points, const Eigen::VectorXd& u, double noise) {
-  const Index n = points.rows();
-  const double floor = 1e-7 * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
-  const Index most = std::max<Index>(8, n / kPointsPerControl);
-  Approximation a;
-  for (Index c = 8;; c = std::min(most, 2 * c)) {
-    a = refit_profile(points, u, c);
-    if (a.rms_deviation <= std::max(kResidualRatio * noise, floor) || c == most)
-      return a;
+// Foot-point parameters (parameter correction, Hoschek 1988): Newton steps on
+// (C(u) - P) . C'(u) = 0 from u, wrapped into the curve's periodic domain.
+Eigen::VectorXd foot_parameters(const BSplineCurve& c, const MatrixXd& P, Eigen::VectorXd u) {
+  const double a = domain_begin(c), T = domain_end(c) - a;
+  for (int step = 0; step < kNewtonSteps; ++step) {
+    const MatrixXd C = evaluate(c, u), D1 = evaluate(c, u, 1), D2 = evaluate(c, u, 2);
+    for (Index i = 0; i < u.size(); ++i) {
+      const Eigen::RowVectorXd r = C.row(i) - P.row(i);
+      const double h = D1.row(i).squaredNorm() + r.dot(D2.row(i));
+      if (h > 0)
+        u(i) -= std::clamp(r.dot(D1.row(i)) / h, -kMaxNewtonStep * T, kMaxNewtonStep * T);
+      u(i) = a + T * ((u(i) - a) / T - std::floor((u(i) - a) / T));
+    }
+  }
+  return u;
+}
+
+// The points' feet on curve c (Newton from u): their parameters t on c (#P) and their arc-length
+// fractions f from the foot of point 0, the leading edge (#P + 1: in [0, 1), closing 1 last).
+struct Feet {
+  Eigen::VectorXd t, f;
+};
+
+Feet feet_on(const BSplineCurve& c, const MatrixXd& P, const Eigen::VectorXd& u) {
+  Feet g;
+  g.t = foot_parameters(c, P, u);
+  const ArcLength arc(c, 16 * int(P.rows()));
+  const double f0 = arc.fraction(g.t(0));
+  g.f.resize(P.rows() + 1);
+  for (Index i = 0; i < P.rows(); ++i) {
+    const double h = arc.fraction(g.t(i)) - f0;
+    g.f(i) = h - std::floor(h);
+  }
+  g.f(0) = 0;
+  g.f(P.rows()) = 1;
+  return g;
+}
+
+// Least squares with c control points at parameters f (#P + 1, point 0 at 0), the points taken in
+// increasing f, knots weighted by the turning of curve `ref` between the points' parameters t on
+// it. Output: the fit, u in the points' given order.
+Approximation fit_at(const MatrixXd& P, const Eigen::VectorXd& f, Index c, const BSplineCurve& ref,
+                     const Eigen::VectorXd& t) {
+  const Index n = P.rows();
+  std::vector<Index> order{};
+  order.resize(size_t(n));
+  std::iota(order.begin(), order.end(), Index(0));
+  std::stable_sort(order.begin(), order.end(), [&](Index i, Index j) { return f(i) < f(j); });
+  Eigen::VectorXd u(n + 1), tt(n + 1);
+  u << f(order), 1.0;
+  tt << t(order), t(order.front()) + domain_end(ref) - domain_begin(ref);
+  Approximation a = weighted_fit(P(order, Eigen::all), u, c, turning_weights(ref, tt));
+  Eigen::VectorXd back(n);
+  back(order) = a.u;
+  a.u = back;
+  return a;
+}
+
+// fit_at, then again at the feet on that fit, so that the residuals are distances normal to the
+// fitted curve (the parameters carry no tangential noise for more control points to fit).
+Approximation corrected_fit(const MatrixXd& P, const Feet& g, Index c, const BSplineCurve& ref) {
+  const Approximation a = fit_at(P, g.f, c, ref, g.t);
+  const Feet h = feet_on(a.curve, P, a.u);
+  return fit_at(P, h.f, c, a.curve, h.t);
+}
+
+// The control points by Mallows' C_p with the known noise: the fewest-risk fit (corrected_fit when
+// `correct`, else fit_at) among 8, 10, ... #P / kPointsPerControl control points (steps of 1/4,
+// until kRisesToStop in a row do not improve on the best), risk RSS + 2 sigma^2 dof with dof =
+// kDofPerControl per control point and sigma^2 = s2.
+Index least_cp(const MatrixXd& P, const Feet& g, const BSplineCurve& ref, double s2, bool correct) {
+  const Index n = P.rows(), most = std::max<Index>(8, n / kPointsPerControl);
+  Index best = 8;
+  double best_cp = std::numeric_limits<double>::infinity();
+  int rises = 0;
+  for (Index c = 8; rises < kRisesToStop; c = std::min(most, std::max(c + 1, c * 5 / 4))) {
+    double cp = std::numeric_limits<double>::infinity();
+    try {
+      const Approximation a = correct ? corrected_fit(P, g, c, ref) : fit_at(P, g.f, c, ref, g.t);
+      cp = double(n) * a.rms_deviation * a.rms_deviation + 2 * s2 * double(kDofPerControl * c);
+    } catch (const std::exception&) { // a singular fit: not a candidate
+    }
+    rises = cp < best_cp ? 0 : rises + 1;
+    if (cp < best_cp)
+      best_cp = cp, best = c;
+    if (c == most)
+      break;
+  }
+  return best;
+}
+
+// A profile's fit before the trailing edges are aligned: the last curve, the points' feet on it
+// and the control points chosen.
+struct ProfileFit {
+  BSplineCurve reference;
+  Feet feet;
+  Index control = 0;
+};
+
+// kShapePasses passes from a pilot (kPilotControl control points, knots even, at the parameters
+// u): the control points by least_cp from the feet on the last curve, whose corrected_fit is the
+// next curve. A floor of 1e-7 of the profile's size stands for round-off when the noise is 0.
+ProfileFit fit_profile(const MatrixXd& P, const Eigen::VectorXd& u, double noise) {
+  const double floor = 1e-7 * (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+  const double s2 = std::pow(std::max(noise, floor), 2);
+  const Index most = std::max<Index>(8, P.rows() / kPointsPerControl);
+  Approximation a = weighted_fit(P, u, std::min(kPilotControl, most), {});
+  ProfileFit f;
+  for (int pass = 0; pass < kShapePasses; ++pass) {
+    const Feet g = feet_on(a.curve, P, a.u);
+    const bool last = pass + 1 == kShapePasses;
+    f.control = least_cp(P, g, a.curve, s2, last);
+    a = last ? corrected_fit(P, g, f.control, a.curve) : fit_at(P, g.f, f.control, a.curve, g.t);
+  }
+  f.reference = a.curve;
+  f.feet = feet_on(a.curve, P, a.u);
+  return f;
+}
+
+// The final fit of a profile at its aligned parameters u (#P + 1), with fewer control points
+// (steps of 1/5) if the chosen count's system is singular there.
+Approximation final_fit(const MatrixXd& P, const ProfileFit& f, const Eigen::VectorXd& u) {
+  for (Index c = f.control;; c = std::max<Index>(8, c * 4 / 5)) {
+    try {
+      return fit_at(P, u, c, f.reference, f.feet.t);
+    } catch (const std::runtime_error&) {
+      if (c == 8)
+        throw;
+    }
   }
 }
 
@@ -309,10 +473,10 @@ SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
   std::vector<std::string> notes;
   const std::vector<PreparedSection> prepared =
       prepare_sections(smoothed, StartAlign::leading_edge, notes);
-  // Pass 1: parameters from the smoothed polyline, control points by the discrepancy principle.
-  // Pass 2, the same control points: each point's arc-length fraction on its pass-1 curve, so
-  // that u means the same fraction of the profile in every section (the loft's correspondence;
-  // the smoothed polyline cuts the noses short, by a different share in each section).
+  // The pilot's parameters: chord length along the smoothed polyline. The fits then move every
+  // point to its foot's arc-length fraction, so that u means the same fraction of the profile in
+  // every section (the loft's correspondence; the smoothed polyline cuts the noses short, by a
+  // different share in each section).
   std::vector<MatrixXd> points;
   std::vector<Eigen::VectorXd> u;
   std::vector<Index> te;
@@ -322,19 +486,23 @@ SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
     te.push_back(prepared[k].te);
   }
   align_trailing_edges(u, te);
-  std::vector<Approximation> fits;
-  for (size_t k = 0; k < slices.size(); ++k) {
-    fits.push_back(fit_profile(points[k], u[k], r.noise));
-    const ArcLength arc(fits[k].curve, 16 * int(points[k].rows()));
-    for (Index i = 0; i + 1 < u[k].size(); ++i)
-      u[k](i) = arc.fraction(fits[k].u(i));
-  }
+  // Each profile's shape and parameters, then one trailing-edge parameter for all, and the
+  // final fits there.
+  const long K = long(slices.size());
+  const int threads = detail::resolve_threads(options.threads);
+  std::vector<ProfileFit> fits(size_t(K), ProfileFit{});
+  detail::parallel_for(K, threads, [&](long k, int) {
+    fits[size_t(k)] = fit_profile(points[size_t(k)], u[size_t(k)], r.noise);
+  });
+  for (size_t k = 0; k < slices.size(); ++k)
+    u[k] = fits[k].feet.f;
   align_trailing_edges(u, te);
-  for (size_t k = 0; k < slices.size(); ++k)
-    fits[k] = refit_profile(points[k], u[k], fits[k].curve.ctrl.rows() - fits[k].curve.degree);
-  for (size_t k = 0; k < slices.size(); ++k)
-    r.sections.push_back(
-        fitted_section(fits[k], family.stations[k], points[k].rows(), options.samples));
+  r.sections.resize(size_t(K));
+  detail::parallel_for(K, threads, [&](long k, int) {
+    const size_t i = size_t(k);
+    r.sections[i] = fitted_section(final_fit(points[i], fits[i], u[i]), family.stations[i],
+                                   points[i].rows(), options.samples);
+  });
   if (options.progress)
     options.progress("fitted " + std::to_string(r.sections.size()) + " sections");
   r.loft = loft_fitted_curves(r.sections, prepared, std::move(notes));

@@ -26,6 +26,11 @@ struct ApproximationOptions {
   // curves fitted separately share knot values and their knot union (make_compatible) has no
   // near-coincident knots. Throws std::invalid_argument if rounding merges two knots.
   double knot_grid = 0;
+  // Closed curves only, non-empty: #P positive weights, w_i for the parameter interval
+  // [u_i, u_{i+1}] (the last one closing the curve); the knots split the cumulative weight into
+  // equal parts (linear inside an interval), so a heavier stretch gets shorter knot spans. Empty:
+  // all 1 (parameter quantiles).
+  Eigen::VectorXd knot_weights;
 };
 
 struct Approximation {

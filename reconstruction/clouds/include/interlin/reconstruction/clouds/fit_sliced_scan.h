@@ -22,6 +22,7 @@ struct SliceFitOptions {
   // Samples per fitted section (FittedSection::section), evenly spaced by arc length (0: 8 x
   // the curve's control points, >= 400).
   int samples = 0;
+  int threads = 0; // sections fitted in parallel; 0: all hardware threads (results identical)
   std::function<void(const std::string&)> progress; // one line per step
 };
 
@@ -59,14 +60,18 @@ struct SlicedFit {
 
 // Each slice: its points projected onto the slice's plane or cylinder, order_profile, one
 // winding and the start at the leading edge for all slices (prepare_sections on a moving
-// average of the ordered points), parameters from that moving average (chord length of the
-// smoothed polyline, insensitive to the noise, mapped piecewise linearly so that every trailing
-// edge sits at one parameter), then approximate_curve (closed, cubic, knots on multiples of
-// 2^-16 so that the curves' knot union has no near-coincident knots) with 8, 16, 32, ... up to
-// #points / 4 control points until the rms residual is at most 1.5 sigma (the discrepancy
-// principle: the in-plane residual of isotropic noise is sqrt(2) sigma). The curves are
-// brought onto one knot vector (make_compatible) and interlinated cubically along the span at
-// the slices' stations.
+// average of the ordered points), then closed cubic least squares (approximate_curve, knots on
+// multiples of 2^-16 so that the curves' knot union has no near-coincident knots) in two passes
+// from a pilot fit (32 control points at the chord length of the moving average):
+//   - each point's parameter is its foot's arc-length fraction on the last fit (so that the
+//     residuals are distances normal to the curve, without the points' tangential noise);
+//   - the knots are spread by arc length plus turning angle of the last fit (crowding at the
+//     noses);
+//   - the control points (8 ... #points / 4) minimise Mallows' C_p with the known noise,
+//     RSS + 8 sigma^2 x control points, each candidate refitted once at its own feet.
+// The parameters are then mapped piecewise linearly so that every trailing edge sits at one
+// parameter, and refitted there. The curves are brought onto one knot vector (make_compatible)
+// and interlinated cubically along the span at the slices' stations.
 // Inputs: P #P by 3, a family from detect_slices (kind planar or radial, >= 2 slices).
 // Throws std::invalid_argument for a family of another kind or fewer than 2 slices,
 // std::runtime_error if the loft missed a fitted section by more than 1e-9 of the diagonal.
