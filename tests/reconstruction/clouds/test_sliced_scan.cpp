@@ -279,8 +279,8 @@ TEST_CASE("sectioned scans: the fixed station cubic against the leave-one-out sp
         }
 }
 
-// Measurement, not a test (hidden tag; docs/benchmarks.md, "Sectioned scans: knots where the
-// profile turns (session 15, not adopted)"): the fitted sections' rms and max distance to the
+// Measurement, not a test (hidden tag; docs/benchmarks.md, "Sectioned scans: feet, knots where
+// the profile turns, and C_p"): the fitted sections' rms and max distance to the
 // exact profiles over a family of scans (planar and radial, 150 to 1000 random points per slice,
 // thickness 0.04 to 0.3 of the chord, noise 0 to 0.01, chord about 1.5), the yardstick for any
 // change to the section fit.
