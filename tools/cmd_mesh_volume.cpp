@@ -65,10 +65,7 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
     const std::string b =
         hex ? parse_choice("boundary", a.get("boundary"), {"projected", "dual", "pillow"})
             : parse_choice("boundary", a.get("boundary"), {"cut", "projected"});
-    o.boundary = b == "cut"         ? VolumeBoundary::cut
-                 : b == "projected" ? VolumeBoundary::projected
-                 : b == "dual"      ? VolumeBoundary::dual
-                                    : VolumeBoundary::pillow;
+    o.boundary = boundary_named(b);
   }
   if (a.has("margin") &&
       (o.boundary == VolumeBoundary::dual || o.boundary == VolumeBoundary::pillow))
@@ -163,8 +160,7 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
             << "), " << m.V.rows() << " nodes, " << m.B.rows()
             << (tets ? " boundary triangles" : " boundary quadrilaterals") << "\n";
   if (!tets) {
-    const char* kName[] = {"cut", "projected", "dual", "pillow"};
-    std::cout << "  layer        " << kName[int(info.boundary)];
+    std::cout << "  layer        " << boundary_name(info.boundary);
     if (info.folded_pillows > 0)
       std::cout << " (the pillow mesh kept " << info.folded_pillows << " folded elements)";
     std::cout << "\n";

@@ -53,8 +53,7 @@ py::dict volume_info_dict(const VolumeMeshInfo& i) {
       field("on_zero", &VolumeMeshInfo::on_zero), field("clipped", &VolumeMeshInfo::clipped),
       field("suggested_cell", &VolumeMeshInfo::suggested_cell),
       field("folded_pillows", &VolumeMeshInfo::folded_pillows));
-  const char* kBoundary[] = {"cut", "projected", "dual", "pillow"};
-  d["boundary"] = kBoundary[int(i.boundary)];
+  d["boundary"] = boundary_name(i.boundary);
   d["body_volume"] = i.coverage.body;
   d["lost_volume"] = i.coverage.lost;
   d["lost_thickness"] = i.coverage.thickness();
@@ -185,11 +184,10 @@ void bind_volume_meshes(py::module_& m) {
         o.elements = choice<VolumeElements>(
             {{"tet", VolumeElements::tetrahedra}, {"hex", VolumeElements::hexahedra}}, elements,
             "elements");
-        o.boundary = choice<VolumeBoundary>({{"cut", VolumeBoundary::cut},
-                                             {"projected", VolumeBoundary::projected},
-                                             {"dual", VolumeBoundary::dual},
-                                             {"pillow", VolumeBoundary::pillow}},
-                                            boundary, "boundary");
+        std::map<std::string, VolumeBoundary> boundaries;
+        for (VolumeBoundary b : kVolumeBoundaries)
+          boundaries[boundary_name(b)] = b;
+        o.boundary = choice<VolumeBoundary>(boundaries, boundary, "boundary");
         o.rule = choice<ZeroRule>(
             {{"strict", ZeroRule::strict}, {"inclusive", ZeroRule::inclusive}}, rule, "rule");
         if (box)

@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <cfloat>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,21 @@ enum class VolumeElements { tetrahedra, hexahedra };
 // stays folded after untangling (0-1 % on the shipped models at their benchmark cells, 3.8 % on
 // the valve at 0.1, which still folds; docs/benchmarks.md).
 enum class VolumeBoundary { cut, projected, dual, pillow };
+inline constexpr VolumeBoundary kVolumeBoundaries[] = {
+    VolumeBoundary::cut, VolumeBoundary::projected, VolumeBoundary::dual, VolumeBoundary::pillow};
+
+// The boundary's name as the CLI and the Python module spell it: "cut", "projected", "dual",
+// "pillow"; and back (std::invalid_argument for another name).
+inline const char* boundary_name(VolumeBoundary b) {
+  constexpr const char* kNames[] = {"cut", "projected", "dual", "pillow"};
+  return kNames[int(b)];
+}
+inline VolumeBoundary boundary_named(const std::string& name) {
+  for (VolumeBoundary b : kVolumeBoundaries)
+    if (name == boundary_name(b))
+      return b;
+  throw std::invalid_argument("unknown volume boundary '" + name + "'");
+}
 
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
