@@ -68,7 +68,8 @@ struct SlicedFit {
 //   - the knots are spread by arc length plus turning angle of the last fit (crowding at the
 //     noses);
 //   - the control points (8 ... #points / 4) minimise Mallows' C_p with the known noise,
-//     RSS + 8 sigma^2 x control points, each candidate refitted once at its own feet.
+//     RSS + 8 sigma^2 x control points (in the second pass each candidate is refitted once at
+//     its own feet).
 // The parameters are then mapped piecewise linearly so that every trailing edge sits at one
 // parameter, and refitted there. The curves are brought onto one knot vector (make_compatible)
 // and interlinated cubically along the span at the slices' stations.
