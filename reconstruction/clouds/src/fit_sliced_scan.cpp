@@ -267,28 +267,32 @@ Approximation corrected_fit(const MatrixXd& P, const Feet& g, Index c, const BSp
   return fit_at(P, h.f, c, a.curve, h.t);
 }
 
-// The control points by Mallows' C_p with the known noise: the fewest-risk fit (corrected_fit when
-// `correct`, else fit_at) among 8, 10, ... #P / kPointsPerControl control points (steps of 1/4,
-// until kRisesToStop in a row do not improve on the best), risk RSS + 2 sigma^2 dof with dof =
-// kDofPerControl per control point and sigma^2 = s2.
-Index least_cp(const MatrixXd& P, const Feet& g, const BSplineCurve& ref, double s2, bool correct) {
+// The fit whose control points minimise Mallows' C_p with the known noise: the fewest-risk fit
+// (corrected_fit when `correct`, else fit_at) among 8, 10, ... #P / kPointsPerControl control
+// points (steps of 1/4, until kRisesToStop in a row do not improve on the best), risk RSS + 2
+// sigma^2 dof with dof = kDofPerControl per control point and sigma^2 = s2.
+Approximation least_cp(const MatrixXd& P, const Feet& g, const BSplineCurve& ref, double s2,
+                       bool correct) {
   const Index n = P.rows(), most = std::max<Index>(8, n / kPointsPerControl);
-  Index best = 8;
+  Approximation best;
   double best_cp = std::numeric_limits<double>::infinity();
   int rises = 0;
   for (Index c = 8; rises < kRisesToStop; c = std::min(most, std::max(c + 1, c * 5 / 4))) {
     double cp = std::numeric_limits<double>::infinity();
+    Approximation a;
     try {
-      const Approximation a = correct ? corrected_fit(P, g, c, ref) : fit_at(P, g.f, c, ref, g.t);
+      a = correct ? corrected_fit(P, g, c, ref) : fit_at(P, g.f, c, ref, g.t);
       cp = double(n) * a.rms_deviation * a.rms_deviation + 2 * s2 * double(kDofPerControl * c);
     } catch (const std::exception&) { // a singular fit: not a candidate
     }
     rises = cp < best_cp ? 0 : rises + 1;
     if (cp < best_cp)
-      best_cp = cp, best = c;
+      best_cp = cp, best = std::move(a);
     if (c == most)
       break;
   }
+  if (!(best_cp < std::numeric_limits<double>::infinity())) // no candidate: as the smallest
+    return correct ? corrected_fit(P, g, 8, ref) : fit_at(P, g.f, 8, ref, g.t);
   return best;
 }
 
@@ -301,20 +305,17 @@ struct ProfileFit {
 };
 
 // kShapePasses passes from a pilot (kPilotControl control points, knots even, at the parameters
-// u): the control points by least_cp from the feet on the last curve, whose corrected_fit is the
-// next curve. A floor of 1e-7 of the profile's size stands for round-off when the noise is 0.
+// u): the next curve is least_cp's fit from the feet on the last one. A floor of 1e-7 of the
+// profile's size stands for round-off when the noise is 0.
 ProfileFit fit_profile(const MatrixXd& P, const Eigen::VectorXd& u, double noise) {
   const double floor = 1e-7 * (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
   const double s2 = std::pow(std::max(noise, floor), 2);
   const Index most = std::max<Index>(8, P.rows() / kPointsPerControl);
   Approximation a = weighted_fit(P, u, std::min(kPilotControl, most), {});
   ProfileFit f;
-  for (int pass = 0; pass < kShapePasses; ++pass) {
-    const Feet g = feet_on(a.curve, P, a.u);
-    const bool last = pass + 1 == kShapePasses;
-    f.control = least_cp(P, g, a.curve, s2, last);
-    a = last ? corrected_fit(P, g, f.control, a.curve) : fit_at(P, g.f, f.control, a.curve, g.t);
-  }
+  for (int pass = 0; pass < kShapePasses; ++pass)
+    a = least_cp(P, feet_on(a.curve, P, a.u), a.curve, s2, pass + 1 == kShapePasses);
+  f.control = a.curve.ctrl.rows() - a.curve.degree;
   f.reference = a.curve;
   f.feet = feet_on(a.curve, P, a.u);
   return f;
