@@ -1,12 +1,14 @@
 #pragma once
 // The corner scaled Jacobian of a hexahedron (Knupp; Verdict's hexahedral scaled Jacobian without
 // its centre term): at corner j with edges u, v, w to the corners of corner_table(8) row j,
-// alpha_j / (|u| |v| |w|), alpha_j = (u x v) . w (digest 003 §6.4).
+// alpha_j / (|u| |v| |w|), alpha_j = (u x v) . w (digest 003 §6.4); and the centre's principal
+// axes and Jacobian (Verdict's centre term).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 namespace interlin::detail {
@@ -32,13 +34,18 @@ inline CornerJacobian corner_scaled_jacobian(const Eigen::Vector3d p[8], const E
 }
 
 // The hexahedron's principal axes at its centre (Verdict), corners in VTK order: the trilinear
-// map's derivatives there, times 4. (x1 x x2) . x3 <= 0: the element folds inside even where all 8
-// corners are convex.
+// map's derivatives there, times 4.
+inline std::array<Eigen::Vector3d, 3> centre_axes(const Eigen::Vector3d p[8]) {
+  return {(p[1] - p[0]) + (p[2] - p[3]) + (p[5] - p[4]) + (p[6] - p[7]),
+          (p[3] - p[0]) + (p[2] - p[1]) + (p[7] - p[4]) + (p[6] - p[5]),
+          (p[4] - p[0]) + (p[5] - p[1]) + (p[6] - p[2]) + (p[7] - p[3])};
+}
+
+// (x1 x x2) . x3 of the centre axes: <= 0, the element folds inside even where all 8 corners
+// are convex.
 inline double centre_jacobian(const Eigen::Vector3d p[8]) {
-  const Eigen::Vector3d x1 = (p[1] - p[0]) + (p[2] - p[3]) + (p[5] - p[4]) + (p[6] - p[7]);
-  const Eigen::Vector3d x2 = (p[3] - p[0]) + (p[2] - p[1]) + (p[7] - p[4]) + (p[6] - p[5]);
-  const Eigen::Vector3d x3 = (p[4] - p[0]) + (p[5] - p[1]) + (p[6] - p[2]) + (p[7] - p[3]);
-  return x1.cross(x2).dot(x3);
+  const std::array<Eigen::Vector3d, 3> x = centre_axes(p);
+  return x[0].cross(x[1]).dot(x[2]);
 }
 
 } // namespace interlin::detail

@@ -110,13 +110,10 @@ void hexahedron(const Eigen::MatrixXd& P, ElementQuality& q) {
   static const Eigen::MatrixXi T = corner_table(8);
   const detail::CornerJacobian corners = detail::corner_scaled_jacobian(p, T);
   q.scaled_jacobian = corners.min_scaled;
-  // Centre: the principal axes (Verdict, as detail::centre_jacobian); folded there counts as
-  // inverted, as at a corner.
-  const Vec3 x1 = (p[1] - p[0]) + (p[2] - p[3]) + (p[5] - p[4]) + (p[6] - p[7]);
-  const Vec3 x2 = (p[3] - p[0]) + (p[2] - p[1]) + (p[7] - p[4]) + (p[6] - p[5]);
-  const Vec3 x3 = (p[4] - p[0]) + (p[5] - p[1]) + (p[6] - p[2]) + (p[7] - p[3]);
-  const double l = x1.norm() * x2.norm() * x3.norm();
-  const double centre = x1.cross(x2).dot(x3);
+  // Centre: the principal axes (Verdict); folded there counts as inverted, as at a corner.
+  const std::array<Vec3, 3> x = detail::centre_axes(p);
+  const double l = x[0].norm() * x[1].norm() * x[2].norm();
+  const double centre = x[0].cross(x[1]).dot(x[2]);
   q.scaled_jacobian = std::min(q.scaled_jacobian, l > 0 ? centre / l : 0.0);
   q.inverted = corners.inverted || !(centre > 0);
   q.volume = hex_volume(p);
