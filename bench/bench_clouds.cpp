@@ -14,7 +14,9 @@
 //                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--no-thin-walls]
 // (--resolution: interlin's grid cells along the box's longest side; auto, the default:
 // default_mesh_cell, cells of spacing / K with K = --cells-per-spacing, 2 by default.)
-//                     [--exact-sigmas S,S]
+//                     [--exact-sigmas S,S] [--span-smoothing auto|off]
+// (--span-smoothing off: the sectioned scans' sections each fitted to its slice alone,
+// SliceFitOptions::smooth_span, for the same-run comparison in docs/benchmarks.md.)
 // (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
 // inspection.)
 // (--methods: which of interlin (unstructured and, for slices, sectioned), PCL and Open3D run;
@@ -187,6 +189,9 @@ struct Reconstruction {
   double section_gap = kNaN; // sectioned only
 };
 
+// --span-smoothing, passed to the workers (as --save is).
+constexpr const char* kSpanSmoothingVariable = "BENCH_CLOUDS_SPAN_SMOOTHING";
+
 // Kept apart from the point cloud: the slices' family and noise come from the points alone.
 void reconstruct_sectioned(const PointCloud& c, int threads, Reconstruction& r) {
   const SliceFamily family = detect_slices(c.points);
@@ -194,6 +199,8 @@ void reconstruct_sectioned(const PointCloud& c, int threads, Reconstruction& r) 
     throw std::runtime_error("no slices detected");
   SliceFitOptions fo;
   fo.threads = threads;
+  const char* smoothing = std::getenv(kSpanSmoothingVariable);
+  fo.smooth_span = !(smoothing && std::string(smoothing) == "off");
   const SlicedFit fit = fit_sliced_scan(c.points, family, fo);
   SurfaceMeshOptions so;
   so.nu = 1200;
@@ -534,7 +541,11 @@ Options parse_options(int argc, char** argv) {
       o.methods = v;
     else if (a == "--save")
       setenv(kSaveVariable, v.c_str(), 1);
-    else if (a == "--fit") {
+    else if (a == "--span-smoothing") {
+      if (v != "auto" && v != "off")
+        throw UsageError(a + " wants auto or off, not '" + v + "'");
+      setenv(kSpanSmoothingVariable, v.c_str(), 1);
+    } else if (a == "--fit") {
       try {
         fit_options(v, nullptr);
       } catch (const std::invalid_argument& e) {

@@ -65,6 +65,9 @@ Point clouds:
   --voxel LEAF           voxel-grid downsampling with cubes of side LEAF (default 0: off)
   --normal-neighbours K  neighbours of the normal estimation (default 16)
   --max-depth D          unstructured fit: octree levels (default 12)
+  --span-smoothing MODE  sectioned scans: auto (default: the sections become isocurves of one
+                         least-squares surface through all slices when Mallows' C_p prefers it),
+                         off (each section fitted to its slice alone)
   --threads T            worker threads (default: all cores)
   --max-grid-nodes N     largest grid --resolution may ask for, (resolution + 5)^3 nodes
                          as for a cube box (default 4000000, about 4 GB of memory)
@@ -155,7 +158,8 @@ void refuse(const ParsedArgs& a, const std::vector<const char*>& options, const 
 
 const std::vector<const char*> kCloudOptions = {
     "slices",        "noise", "normals",           "outliers",
-    "outlier-ratio", "voxel", "normal-neighbours", "max-depth"};
+    "outlier-ratio", "voxel", "normal-neighbours", "max-depth",
+    "span-smoothing"};
 
 void sections_job(const ParsedArgs& a, const std::string& input, const std::string& output,
                   const Progress& progress) {
@@ -246,6 +250,7 @@ int run_implicit(int argc, const char* const* argv) {
                       {"voxel", 0, true, false},
                       {"normal-neighbours", 0, true, false},
                       {"max-depth", 0, true, false},
+                      {"span-smoothing", 0, true, false},
                       {"max-grid-nodes", 0, true, false}},
                      implicit_main);
 }

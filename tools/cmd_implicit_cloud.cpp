@@ -19,7 +19,7 @@ namespace interlin::cli {
 
 namespace {
 
-const std::vector<const char*> kBodyOptions = {"resolution", "band", "margin"};
+const std::vector<const char*> kBodyOptions = {"resolution", "band", "margin", "span-smoothing"};
 
 SliceKind slice_option(const ParsedArgs& a) {
   const std::string s =
@@ -66,6 +66,7 @@ void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& fami
   so.noise = noise;
   so.threads = bo.threads;
   so.progress = progress;
+  so.smooth_span = a.get("span-smoothing", "auto") == "auto";
   progress("fitting " + std::to_string(family.members.size()) + " sections");
   const SlicedFit fit = fit_sliced_scan(c.points, family, so);
   int cmin = 1 << 30, cmax = 0;
@@ -84,6 +85,12 @@ void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& fami
             << " control points, noise " << fmt(fit.noise, 3)
             << (noise > 0 ? " (given)" : " (the slices' spread)") << ", largest rms residual "
             << fmt(rms, 3) << "; fitted curves to the loft " << fmt(fit.section_gap, 3) << "\n";
+  std::cout << "  span         "
+            << (fit.span_control > 0
+                    ? "smoothed: the sections are isocurves of one surface with " +
+                          std::to_string(fit.span_control) + " control points along the span"
+                    : std::string("each section fitted to its slice alone"))
+            << "\n";
   progress("implicit body of the loft");
   const SectionBodyBuild b = build_section_body(fit.loft, bo);
   print_section_body(b, std::to_string(fit.sections.size()) + " fitted");
@@ -147,6 +154,8 @@ void cloud_job(const ParsedArgs& a, const std::string& input, const std::string&
     if (!(noise > 0))
       throw UsageError("--noise: expected a standard deviation > 0");
   }
+  if (const std::string m = a.get("span-smoothing", "auto"); m != "auto" && m != "off")
+    throw UsageError("--span-smoothing: expected auto or off, got '" + m + "'");
   // Every option is checked before any work.
   const CloudPrepOptions po = prep_options(a, progress);
   CloudFitOptions fo;

@@ -96,14 +96,16 @@ ImplicitModel section_body(const py::object& sections, SectionBodyOptions o) {
 struct CloudArgs {
   CloudPrepOptions prep;
   SliceKind slices = SliceKind::automatic;
+  bool smooth_span = true;
   CloudFitOptions fit;
 };
 
 // A sectioned scan: fitted sections -> loft -> section body (cmd_implicit_cloud.cpp).
-ImplicitModel sliced_body(const PointCloud& c, const SliceFamily& family, double noise,
+ImplicitModel sliced_body(const PointCloud& c, const SliceFamily& family, const CloudArgs& a,
                           SectionBodyOptions o) {
   SliceFitOptions so;
-  so.noise = noise;
+  so.noise = a.fit.noise;
+  so.smooth_span = a.smooth_span;
   so.threads = o.threads;
   so.progress = o.progress;
   SlicedFit fit;
@@ -120,6 +122,7 @@ ImplicitModel sliced_body(const PointCloud& c, const SliceFamily& family, double
   M.report["slice_spread"] = family.spread;
   M.report["noise"] = fit.noise;
   M.report["section_gap"] = fit.section_gap;
+  M.report["span_control"] = fit.span_control;
   return M;
 }
 
@@ -157,7 +160,7 @@ ImplicitModel cloud_body(const py::object& input, const CloudArgs& a, const Sect
     throw_input_error(path, 0,
                       std::string("no ") + (a.slices == SliceKind::planar ? "planar" : "radial") +
                           " slices found; use slices=\"auto\" or \"none\"");
-  ImplicitModel M = family.kind != SliceKind::none ? sliced_body(c, family, a.fit.noise, o)
+  ImplicitModel M = family.kind != SliceKind::none ? sliced_body(c, family, a, o)
                                                    : cloud_pu(path, c, a, rep, notes);
   for (const auto& [key, value] : cloud_report_dict(rep))
     M.report[key] = value;
@@ -242,7 +245,7 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
          const py::object& span_degree, const std::string& align, const std::string& match,
          const py::object& param, const std::string& span, const std::string& slices, double noise,
          int max_depth, int outliers, double outlier_ratio, double voxel,
-         const std::string& normals, int normal_neighbours) {
+         const std::string& normals, int normal_neighbours, const std::string& span_smoothing) {
         if (resolution < 8 || resolution > 1024)
           throw py::value_error("resolution: expected 8 .. 1024 grid cells");
         if (!(band.first > 0 && band.second > band.first))
@@ -291,6 +294,8 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
         a.prep.progress = a.fit.progress = o.progress;
         a.fit.noise = noise;
         a.fit.max_depth = max_depth;
+        a.smooth_span =
+            choice<bool>({{"auto", true}, {"off", false}}, span_smoothing, "span_smoothing");
         return cloud_body(input, a, o);
       },
       py::arg("input"), py::arg("resolution") = 96, py::arg("band") = std::pair{1.5, 3.0},
@@ -301,7 +306,7 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
       py::arg("param") = "chord", py::arg("span") = "auto", py::arg("slices") = "auto",
       py::arg("noise") = 0.0, py::arg("max_depth") = 12, py::arg("outliers") = 16,
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
-      py::arg("normal_neighbours") = 16,
+      py::arg("normal_neighbours") = 16, py::arg("span_smoothing") = "auto",
       R"(The implicit equation of a body, as `interlin implicit` -> ImplicitModel.
 input            sections (a section file, a SectionSet, or a list of Section / (P, 3) arrays):
                  the body of the loft through every section, closed by ruled end caps; a point
@@ -321,6 +326,9 @@ slices           clouds: "auto" (detect planar, then radial slices), "planar", "
                  (always the unstructured fit)
 noise            clouds: the scan noise sigma (0: estimated)
 max_depth        unstructured clouds: the octree's deepest level
+span_smoothing   sectioned scans: "auto" (the sections become isocurves of one least-squares
+                 surface through all slices when Mallows' C_p prefers it; report span_control:
+                 its control points along the span, 0 when not) or "off"
 outliers, outlier_ratio, voxel, normals, normal_neighbours   the preparation steps (as
                  prepare_cloud; outliers 0: off, voxel 0: off).)");
   m.def("ifl_kinds", &ifl_kinds, "The model kinds .ifl files may hold (load_model reads them).");

@@ -89,4 +89,46 @@ VectorXd periodic_knots(const VectorXd& u, int p) {
   return t;
 }
 
+// seed 001 ch. 3 (least squares); Piegl & Tiller eq. 9.68-9.69.
+VectorXd approximation_knots(const VectorXd& u, int p, Index n) {
+  const Index N = u.size();
+  if (n == N)
+    return averaged_knots(u, p); // interpolation: knot averaging keeps the system regular
+  VectorXd t(n + p + 1);
+  t.head(p + 1).setConstant(u(0));
+  t.tail(p + 1).setConstant(u(N - 1));
+  const double d = double(N) / double(n - p);
+  for (Index j = 1; j < n - p; ++j) {
+    const Index i = static_cast<Index>(std::floor(j * d));
+    const double a = j * d - double(i);
+    t(p + j) = (1 - a) * u(i - 1) + a * u(i);
+  }
+  return t;
+}
+
+VectorXd periodic_quantile_knots(const VectorXd& u, int p, Index n, const VectorXd& w) {
+  const Index N = u.size() - 1;
+  if (n == N && w.size() == 0)
+    return periodic_knots(u, p); // interpolation: sites (odd p) or midpoints (even p)
+  const double period = u(N) - u(0);
+  VectorXd W(N + 1); // W(i): weight of the intervals before u_i
+  W(0) = 0;
+  for (Index i = 0; i < N; ++i)
+    W(i + 1) = W(i) + (w.size() != 0 ? w(i) : 1.0);
+  VectorXd tau(n);
+  for (Index j = 0, i = 0; j < n; ++j) {
+    const double x = double(j) * W(N) / double(n);
+    while (i + 1 < N && W(i + 1) <= x)
+      ++i;
+    tau(j) = u(i) + (x - W(i)) / (W(i + 1) - W(i)) * (u(i + 1) - u(i));
+  }
+  VectorXd t(n + 2 * p + 1);
+  for (Index k = 0; k < t.size(); ++k) {
+    const Index j = k - p;
+    const Index q = ((j % n) + n) % n;
+    t(k) = tau(q) + period * double((j - q) / n);
+  }
+  return t;
+}
+
 } // namespace interlin

@@ -111,3 +111,20 @@ def test_sectioned_scan_becomes_the_clis_section_body(tmp_path):
     # omega vanishes on the fitted sections; the scan points are off them by the fit's residual
     # (closed cubics, measured 4.2e-3 at most on the 4.6-unit wide body).
     assert np.max(np.abs(M(P))) < 0.01 and M(np.array([[0.0, 0, 0]]))[0] > 0.3
+
+
+def test_sectioned_scan_span_smoothing_is_the_clis(tmp_path):
+    # span_smoothing="off" fits each section alone (report span_control 0), as the CLI's
+    # --span-smoothing off, value for value; a bad choice is a ValueError.
+    zs = np.linspace(-1, 1, 8)
+    P = np.vstack([body_point(2 * np.pi * RNG.uniform(0, 1, 300), z) for z in zs])
+    path, ifl = str(tmp_path / "slices.xyz"), str(tmp_path / "alone.ifl")
+    np.savetxt(path, P, fmt="%.17g")
+    M = interlin.implicit(path, resolution=16, threads=1, span_smoothing="off")
+    assert M.report["span_control"] == 0
+    cli("implicit", path, "-o", ifl, "--resolution", "16", "--threads", "1", "-q",
+        "--span-smoothing", "off")
+    Q = RNG.uniform(-2.5, 2.5, (300, 3))
+    assert np.array_equal(M(Q), interlin.load_model(ifl)(Q))
+    with pytest.raises(ValueError, match="span_smoothing"):
+        interlin.implicit(path, resolution=16, span_smoothing="always")

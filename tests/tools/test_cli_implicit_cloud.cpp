@@ -163,6 +163,7 @@ TEST_CASE("CLI implicit: a sectioned scan -> fitted sections -> the lofted body"
   REQUIRE(r.status == 0);
   CHECK_THAT(r.err, Catch::Contains("fitting 12 sections")); // progress lines without -q
   CHECK_THAT(r.out, Catch::Contains("slices       planar, 12 along") &&
+                        Catch::Contains("span         smoothed: the sections are isocurves") &&
                         Catch::Contains("sections     12 fitted") &&
                         Catch::Contains("exactness    max |omega|"));
   // The scan points lie within the noise of the surface: omega is the signed distance near the
@@ -191,6 +192,11 @@ TEST_CASE("CLI implicit: a sectioned scan -> fitted sections -> the lofted body"
   r = run("mesh " + d / "blade.ifl -o " + d / "blade.stl --resolution 48 -q");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains(", watertight,"));
+  // Without smoothing along the span: each section on its own.
+  r = run("implicit " + d / "slices.xyz -o " + d / "alone.ifl --resolution 32 -q " +
+          "--span-smoothing off");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("span         each section fitted to its slice alone"));
   // The same points forced unstructured: the partition of unity.
   r = run("implicit " + d / "slices.xyz -o " + d / "pu.ifl --slices none -q");
   CHECK(r.status == 0);
@@ -223,6 +229,8 @@ TEST_CASE("CLI implicit: .csv and .txt inputs are sections or clouds by a stated
   // cloud options for sections are wrong usage
   r = run("implicit " + d / "s.csv -o " + d / "t.ifl --slices auto");
   expect_error(r, 2, "--slices applies to point clouds only");
+  r = run("implicit " + d / "s.csv -o " + d / "t.ifl --span-smoothing off");
+  expect_error(r, 2, "--span-smoothing applies to point clouds only");
   // undecidable: no header and no blank lines, or a header naming neither
   write_file(d / "h.csv", "1,2,3\n4,5,6\n");
   expect_error(run("implicit " + d / "h.csv -o " + d / "h.ifl"), 1,
@@ -256,6 +264,10 @@ TEST_CASE("CLI implicit: bad clouds and options give one line, exit 1 or 2, no o
   expect_error(run("implicit " + d / "ok.xyz" + o + " --noise -1"), 2, "--noise");
   expect_error(run("implicit " + d / "ok.xyz" + o + " --slices none --resolution 64"), 2,
                "--resolution applies to sections and sectioned scans");
+  expect_error(run("implicit " + d / "ok.xyz" + o + " --span-smoothing always"), 2,
+               "--span-smoothing: expected auto or off");
+  expect_error(run("implicit " + d / "ok.xyz" + o + " --slices none --span-smoothing off"), 2,
+               "--span-smoothing applies to sections and sectioned scans");
   expect_error(run("implicit " + d / "ok.xyz" + o + " --set a=1"), 2,
                "--set applies to R-function models");
   expect_error(run("implicit " + d / "ok.xyz" + o + " --normals file"), 1,

@@ -6,6 +6,9 @@
 #include "interlin/splines/knot_insertion.h"
 #include "interlin/splines/parameterization.h"
 
+#include "profile_curves.h"
+#include "smooth_spanwise.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -15,6 +18,12 @@
 
 namespace interlin {
 
+using detail::capped_knot_weights;
+using detail::foot_parameters;
+using detail::kDofPerControl;
+using detail::kKnotGrid;
+using detail::kPointsPerControl;
+using detail::turning_weights;
 using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::Vector3d;
@@ -25,34 +34,12 @@ constexpr int kSmoothingHalfWidth = 3; // parameters: moving average over 7 orde
 // Section samples (FittedSection::section), evenly spaced by arc length: at least 400 and 8 per
 // control point.
 constexpr int kMinSamples = 400, kSamplesPerControl = 8;
-// At least this many points per control point: randomly spaced points leave knot spans nearly
-// empty when there are more control points, and the curve oscillates between the points.
-constexpr Index kPointsPerControl = 4;
-// Knots weighted by the turning angle (turning_weights): every span holds at least this many
-// points' share of the weight.
-constexpr Index kPointsPerSpan = 3;
-// Knot weights: each interval's share of the arc length plus this times its share of the
-// turning angle (measured 0, 1 and 2: 0 loses 3x on the section family, 2 loses 17 % there and
-// gains 11 % on Rotor 37); the first reference curve has this many control points, knots even.
-constexpr double kTurningShare = 1.0;
+// The first reference curve has this many control points, knots even.
 constexpr Index kPilotControl = 32;
 // Shape passes: parameters from the feet on the reference curve, then a new reference.
 constexpr int kShapePasses = 2;
 // least_cp stops after this many counts in a row without a lower C_p.
 constexpr int kRisesToStop = 3;
-// Degrees of freedom per control point in C_p: two coordinates, doubled because the feet let the
-// curve slide along the points as well (measured: 1, 2, 3, 4 and 6 on the section family and
-// the Rotor 37 slices, docs/benchmarks.md; 4 was best on both, 3 and 6 within 4 %).
-constexpr Index kDofPerControl = 4;
-// Foot points: Newton steps and the largest step (share of the period).
-constexpr int kNewtonSteps = 3;
-constexpr double kMaxNewtonStep = 0.01;
-// Knots of every fitted section on multiples of 2^-16 of the parameter period: the sections'
-// knot union then has no spans shorter than that (the loft snaps its parameters at 1e-5 for the
-// same reason: spans well inside the range where the explicit basis is exact to round-off), and
-// moving a knot by less than 1e-5 of the period changes nothing measurable in a least-squares
-// fit of at most #points / 4 spans.
-constexpr double kKnotGrid = 1.0 / 65536;
 // The surface must reproduce each fitted curve to this fraction of the diagonal (as loft_sections
 // guarantees for its input points).
 constexpr double kExactness = 1e-9;
@@ -160,22 +147,6 @@ void align_trailing_edges(std::vector<Eigen::VectorXd>& s, const std::vector<Ind
   }
 }
 
-// Interval weights for the knots at parameters t (#t - 1 intervals) of curve c: each interval's
-// share of the arc length plus kTurningShare times its share of the turning angle, so that knots
-// crowd where the profile turns (the noses, which evenly spaced knots fit only with many control
-// points everywhere, letting the noise through).
-Eigen::VectorXd turning_weights(const BSplineCurve& c, const Eigen::VectorXd& t) {
-  const MatrixXd C = evaluate(c, t), T = evaluate(c, t, 1);
-  const Index n = t.size() - 1;
-  Eigen::VectorXd ds(n), dtheta(n);
-  for (Index i = 0; i < n; ++i) {
-    ds(i) = (C.row(i + 1) - C.row(i)).norm();
-    const double cosine = T.row(i).normalized().dot(T.row(i + 1).normalized());
-    dtheta(i) = std::acos(std::clamp(cosine, -1.0, 1.0));
-  }
-  return ds / std::max(ds.sum(), 1e-300) + kTurningShare * dtheta / std::max(dtheta.sum(), 1e-300);
-}
-
 // A closed cubic through the points at parameters u (#P + 1, increasing from 0 to 1) with
 // `control` control points, knots on the grid, spaced by the interval weights w (empty: evenly by
 // point count), capped at #P / (kPointsPerSpan control) times the even weight per point, so that
@@ -190,32 +161,9 @@ Approximation weighted_fit(const MatrixXd& P, const Eigen::VectorXd& u, Index co
   o.parameters = u;
   o.knot_grid = kKnotGrid;
   o.num_ctrl = int(control);
-  if (w.size() != 0) { // at most K times the even weight per point, spans >= 4 grid steps long
-    const double K = double(P.rows()) / double(kPointsPerSpan * control), W = w.sum();
-    const double Ku = 1 / (4 * kKnotGrid * double(control));
-    o.knot_weights.resize(w.size());
-    for (Index i = 0; i < w.size(); ++i)
-      o.knot_weights(i) =
-          std::min({w(i), K * W / double(w.size()), Ku * W * (u(i + 1) - u(i))}) + 1e-12 * W;
-  }
+  if (w.size() != 0)
+    o.knot_weights = capped_knot_weights(w, Eigen::VectorXd::Ones(w.size()), u, control);
   return approximate_curve(P, o);
-}
-
-// Foot-point parameters (parameter correction, Hoschek 1988): Newton steps on
-// (C(u) - P) . C'(u) = 0 from u, wrapped into the curve's periodic domain.
-Eigen::VectorXd foot_parameters(const BSplineCurve& c, const MatrixXd& P, Eigen::VectorXd u) {
-  const double a = domain_begin(c), T = domain_end(c) - a;
-  for (int step = 0; step < kNewtonSteps; ++step) {
-    const MatrixXd C = evaluate(c, u), D1 = evaluate(c, u, 1), D2 = evaluate(c, u, 2);
-    for (Index i = 0; i < u.size(); ++i) {
-      const Eigen::RowVectorXd r = C.row(i) - P.row(i);
-      const double h = D1.row(i).squaredNorm() + r.dot(D2.row(i));
-      if (h > 0)
-        u(i) -= std::clamp(r.dot(D1.row(i)) / h, -kMaxNewtonStep * T, kMaxNewtonStep * T);
-      u(i) = a + T * ((u(i) - a) / T - std::floor((u(i) - a) / T));
-    }
-  }
-  return u;
 }
 
 // The points' feet on curve c (Newton from u): their parameters t on c (#P) and their arc-length
@@ -332,6 +280,34 @@ Approximation final_fit(const MatrixXd& P, const ProfileFit& f, const Eigen::Vec
         throw;
     }
   }
+}
+
+// The final fits, or the isocurves of smooth_spanwise where its C_p is lower, each with its
+// points' feet as parameters and their distances as deviations. Output: the spanwise control
+// points (0: the fits kept).
+Index smooth_final_fits(const std::vector<MatrixXd>& P, std::vector<Approximation>& fits,
+                        const std::vector<double>& stations, double noise, int threads) {
+  const size_t K = fits.size();
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(Index(K));
+  std::vector<BSplineCurve> curves;
+  std::vector<Eigen::VectorXd> u;
+  Eigen::AlignedBox3d box;
+  for (size_t k = 0; k < K; ++k) {
+    v(Index(k)) = (stations[k] - stations.front()) / (stations.back() - stations.front());
+    curves.push_back(fits[k].curve);
+    u.push_back(fits[k].u);
+    box.extend(Vector3d(P[k].colwise().minCoeff())).extend(Vector3d(P[k].colwise().maxCoeff()));
+  }
+  const double s2 = std::pow(std::max(noise, 1e-7 * box.diagonal().norm()), 2);
+  detail::SpanwiseSections s = detail::smooth_spanwise(P, u, curves, v, s2, threads);
+  for (size_t k = 0; k < K; ++k) {
+    const Eigen::VectorXd d = (evaluate(s.curves[k], s.u[k]) - P[k]).rowwise().norm();
+    fits[k].curve = std::move(s.curves[k]);
+    fits[k].u = std::move(s.u[k]);
+    fits[k].rms_deviation = std::sqrt(d.squaredNorm() / double(d.size()));
+    fits[k].max_deviation = d.maxCoeff();
+  }
+  return s.span_control;
 }
 
 // The fitted section: the curve, its residuals and its arc-length samples.
@@ -498,11 +474,17 @@ SlicedFit fit_sliced_scan(const Eigen::MatrixX3d& P, const SliceFamily& family,
   for (size_t k = 0; k < slices.size(); ++k)
     u[k] = fits[k].feet.f;
   align_trailing_edges(u, te);
+  std::vector<Approximation> finals(static_cast<size_t>(K));
+  detail::parallel_for(K, threads, [&](long k, int) {
+    finals[size_t(k)] = final_fit(points[size_t(k)], fits[size_t(k)], u[size_t(k)]);
+  });
+  if (options.smooth_span)
+    r.span_control = smooth_final_fits(points, finals, family.stations, r.noise, threads);
   r.sections.resize(size_t(K));
   detail::parallel_for(K, threads, [&](long k, int) {
     const size_t i = size_t(k);
-    r.sections[i] = fitted_section(final_fit(points[i], fits[i], u[i]), family.stations[i],
-                                   points[i].rows(), options.samples);
+    r.sections[i] =
+        fitted_section(finals[i], family.stations[i], points[i].rows(), options.samples);
   });
   if (options.progress)
     options.progress("fitted " + std::to_string(r.sections.size()) + " sections");

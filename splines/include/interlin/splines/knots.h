@@ -27,4 +27,18 @@ Eigen::VectorXd averaged_knots(const Eigen::VectorXd& u, int degree);
 // [knots(degree), knots(N+degree)], one period long and containing every site.
 Eigen::VectorXd periodic_knots(const Eigen::VectorXd& u, int degree);
 
+// Clamped knots for least squares with n control points of degree p at the N data parameters u
+// (increasing, n <= N): interior knots where the data's parameters fall in equal shares, so every
+// knot span holds data (Piegl & Tiller eq. 9.68-9.69); n == N: averaged_knots.
+// Output: n + p + 1 knots.
+Eigen::VectorXd approximation_knots(const Eigen::VectorXd& u, int degree, Eigen::Index n);
+
+// Periodic knots for n distinct control points from the N + 1 parameters u (closing one last):
+// one period [u(0), u(N)] split where the cumulative weight of the parameter intervals (w(i) on
+// [u(i), u(i+1)], linear inside; empty w: all 1, the parameter quantiles) reaches j / n of its
+// total, extended periodically on both sides; n == N with empty w: periodic_knots.
+// Output: n + 2 p + 1 knots.
+Eigen::VectorXd periodic_quantile_knots(const Eigen::VectorXd& u, int degree, Eigen::Index n,
+                                        const Eigen::VectorXd& w);
+
 } // namespace interlin

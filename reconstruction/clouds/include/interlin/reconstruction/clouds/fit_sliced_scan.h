@@ -23,17 +23,21 @@ struct SliceFitOptions {
   // the curve's control points, >= 400).
   int samples = 0;
   int threads = 0; // sections fitted in parallel; 0: all hardware threads (results identical)
+  // Smooth along the span: the sections become isocurves of one least-squares surface through
+  // all slices' points where Mallows' C_p prefers it to the sections fitted one by one.
+  bool smooth_span = true;
   std::function<void(const std::string&)> progress; // one line per step
 };
 
 // One fitted section.
 //   station    the slice's station; points: how many scan points it had
 //   curve      the fitted closed cubic in 3D, clamped on [0, 1], starting at the leading edge
-//              (u = 0), every trailing edge at one common u; planar: in the slice's plane;
-//              radial: fitted to the points moved radially onto the slice's cylinder
+//              (u = 0), every trailing edge at (about) one common u; planar: in the slice's
+//              plane; radial: fitted to the points moved radially onto the slice's cylinder
 //   section    the curve's samples (#samples by 3), evenly spaced by arc length; u their
 //              parameters
-//   control    control points used; rms, max: |C(u_i) - P_i| over the slice's points
+//   control    control points used; rms, max: the slice's points' distances to the curve (at
+//              their feet)
 struct FittedSection {
   double station = 0;
   Eigen::Index points = 0;
@@ -50,12 +54,16 @@ struct FittedSection {
 //                its sections / point_u / deviation are the samples', its span model the fixed
 //                station cubic (no cross-validation: loo_* NaN)
 //   section_gap  max |S(u, v_k) - C_k(u)| halfway between the samples: round-off
+//   span_control  0: each section fitted to its slice alone; else the sections are the
+//                isocurves of one tensor-product surface with that many control points along
+//                the span (SliceFitOptions::smooth_span)
 struct SlicedFit {
   SliceFamily family;
   double noise = 0;
   std::vector<FittedSection> sections;
   LoftResult loft;
   double section_gap = 0;
+  Eigen::Index span_control = 0;
 };
 
 // Each slice: its points projected onto the slice's plane or cylinder, order_profile, one
@@ -71,8 +79,12 @@ struct SlicedFit {
 //     RSS + 8 sigma^2 x control points (in the second pass each candidate is refitted once at
 //     its own feet).
 // The parameters are then mapped piecewise linearly so that every trailing edge sits at one
-// parameter, and refitted there. The curves are brought onto one knot vector (make_compatible)
-// and interlinated cubically along the span at the slices' stations.
+// parameter, and refitted there. With smooth_span, the sections are then replaced by the
+// isocurves at the stations of one tensor-product least-squares surface through all slices'
+// points when that has the lower C_p (smooth_spanwise: the noise of each section averages with
+// its neighbours' where the body varies smoothly along the span; measured in docs/benchmarks.md,
+// "Sectioned scans: smoothing along the span"). The curves are brought onto one knot vector
+// (make_compatible) and interlinated cubically along the span at the slices' stations.
 // Inputs: P #P by 3, a family from detect_slices (kind planar or radial, >= 2 slices).
 // Throws std::invalid_argument for a family of another kind or fewer than 2 slices,
 // std::runtime_error if the loft missed a fitted section by more than 1e-9 of the diagonal.
