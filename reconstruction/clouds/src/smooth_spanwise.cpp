@@ -210,14 +210,11 @@ double squared_residual(const BSplineCurve& c, const MatrixXd& P, const VectorXd
   return (evaluate(c, u) - P).squaredNorm();
 }
 
-// The problem: points, their parameters on the sections' own fits, the stations, the noise
-// variance and the threads.
+// The problem: points, their pilot parameters (feet on the sections' own fits, on the common
+// parameter), the knot weights, the scaled stations, the noise variance and the threads.
 struct Inputs {
   const std::vector<MatrixXd>& P;
-  std::vector<VectorXd> u0; // on the common parameter (to_common)
-  const std::vector<BSplineCurve>& curves;
-  std::vector<Edges> edges;
-  double F;
+  std::vector<VectorXd> u0;
   KnotWeights weights;
   const VectorXd& v;
   double s2;
@@ -341,24 +338,24 @@ std::optional<Candidate> least_cp_net(const Inputs& in, Index cu0, Index most) {
   return best;
 }
 
-// The sections as fitted: the points' feet on them, RSS, and C_p (into r).
-void sections_alone(const std::vector<MatrixXd>& P, const std::vector<VectorXd>& u,
-                    const std::vector<BSplineCurve>& curves, double s2, int threads,
-                    SpanwiseSections& r) {
+// The sections as fitted, with the points' feet on them (into r). Output: their C_p,
+// sum_k (RSS_k + 2 s2 kDofPerControl control_k).
+double sections_alone(const std::vector<MatrixXd>& P, const std::vector<VectorXd>& u,
+                      const std::vector<BSplineCurve>& curves, double s2, int threads,
+                      SpanwiseSections& r) {
   const long K = long(P.size());
   r.curves = curves;
   r.u.resize(size_t(K));
-  r.rss.resize(size_t(K));
+  std::vector<double> rss(static_cast<size_t>(K));
   parallel_for(K, threads, [&](long k, int) {
     const size_t i = size_t(k);
     r.u[i] = closest_parameters(curves[i], P[i], u[i]);
-    r.rss[i] = squared_residual(curves[i], P[i], r.u[i]);
+    rss[i] = squared_residual(curves[i], P[i], r.u[i]);
   });
-  r.cp_sections = 0;
+  double cp = 0;
   for (size_t k = 0; k < curves.size(); ++k)
-    r.cp_sections +=
-        r.rss[k] + 2 * s2 * double(kDofPerControl * (curves[k].ctrl.rows() - curves[k].degree));
-  r.cp = r.cp_sections;
+    cp += rss[k] + 2 * s2 * double(kDofPerControl * (curves[k].ctrl.rows() - curves[k].degree));
+  return cp;
 }
 
 } // namespace
@@ -368,7 +365,7 @@ SpanwiseSections smooth_spanwise(const std::vector<MatrixXd>& P, const std::vect
                                  double s2, int threads) {
   const long K = long(P.size());
   SpanwiseSections r;
-  sections_alone(P, u, curves, s2, threads, r);
+  const double cp_sections = sections_alone(P, u, curves, s2, threads, r);
   // the pilot parameters: each point's foot on its section's fit, on the common parameter
   std::vector<Edges> edges(static_cast<size_t>(K));
   parallel_for(K, threads, [&](long k, int) { edges[size_t(k)] = curve_edges(curves[size_t(k)]); });
@@ -379,8 +376,7 @@ SpanwiseSections smooth_spanwise(const std::vector<MatrixXd>& P, const std::vect
   for (size_t k = 0; k < size_t(K); ++k)
     u0.push_back(r.u[k].unaryExpr([&](double x) { return to_common(edges[k], F, x); }));
   KnotWeights weights = knot_weights(curves, edges, F, u0);
-  const Inputs in{P,  std::move(u0), curves, std::move(edges), F, std::move(weights), v,
-                  s2, threads};
+  const Inputs in{P, std::move(u0), std::move(weights), v, s2, threads};
   // from the sections' median count around, at most #points / kPointsPerControl of any slice
   std::vector<Index> counts;
   Index most = std::numeric_limits<Index>::max();
@@ -392,15 +388,11 @@ SpanwiseSections smooth_spanwise(const std::vector<MatrixXd>& P, const std::vect
     return r;
   std::nth_element(counts.begin(), counts.begin() + K / 2, counts.end());
   std::optional<Candidate> best = least_cp_net(in, std::min(counts[size_t(K / 2)], most), most);
-  if (!best || !(best->cp < r.cp_sections))
+  if (!best || !(best->cp < cp_sections))
     return r;
-  r.cp = best->cp;
-  r.control = best->cu;
   r.span_control = best->cv;
   r.curves = std::move(best->curves);
   r.u = std::move(best->u);
-  for (size_t k = 0; k < P.size(); ++k)
-    r.rss[k] = squared_residual(r.curves[k], P[k], r.u[k]);
   return r;
 }
 

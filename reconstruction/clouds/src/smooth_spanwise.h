@@ -12,19 +12,15 @@
 namespace interlin::detail {
 
 // Result.
-//   curves    K closed cubics, the surface's isocurves at the stations (periodic on [0, 1], one
-//             knot vector, leading edge at 0), or the input curves when the sections fitted one
-//             by one win
-//   u         K parameter vectors: each point's foot on its curve
-//   rss       K sums of squared distances from the points to their feet
-//   control, span_control  control points per curve and along the span (both 0: not smoothed)
-//   cp, cp_sections  C_p of the chosen surface and of the sections fitted one by one
+//   curves        K closed cubics, the surface's isocurves at the stations (periodic on [0, 1],
+//                 one knot vector, leading edge at 0), or the input curves when the sections
+//                 fitted one by one win
+//   u             K parameter vectors: each point's foot on its curve
+//   span_control  the surface's control points along the span (0: the sections kept)
 struct SpanwiseSections {
   std::vector<BSplineCurve> curves;
   std::vector<Eigen::VectorXd> u;
-  std::vector<double> rss;
-  Eigen::Index control = 0, span_control = 0;
-  double cp = 0, cp_sections = 0;
+  Eigen::Index span_control = 0;
 };
 
 // S(u, v) = sum_ab B_a(u) N_b(v) Q_ab (a tensor-product least-squares surface through all slices'
