@@ -317,6 +317,29 @@ TEST_CASE("sectioned scans: fitted sections against the exact profiles over a fa
         }
 }
 
+namespace {
+
+// rms and max distance from n random points of the true surface (between the first and last
+// slice; random generator seeded with `seed`) to the loft.
+std::pair<double, double> surface_error(const SlicedFit& f, bool radial, double thick, Index n,
+                                        unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(0, 1);
+  Eigen::MatrixXd T(n, 3);
+  for (Index i = 0; i < T.rows(); ++i) {
+    const double t = U(rng), r = 10 + 3 * t;
+    const Eigen::Vector2d q = profile(2 * M_PI * U(rng), t, thick);
+    if (radial)
+      T.row(i) << r * std::cos(q(0) / r), r * std::sin(q(0) / r), q(1);
+    else
+      T.row(i) << 3 * t, q(0), q(1);
+  }
+  const VectorXd d = project_to_surface(to_piecewise(f.loft.surface), T).distance;
+  return {std::sqrt(d.squaredNorm() / double(d.size())), d.maxCoeff()};
+}
+
+} // namespace
+
 // Measurement, not a test (hidden tag; docs/benchmarks.md, "Sectioned scans: smoothing along the
 // span"): the distance from the true surface (4000 random points between the first and last
 // slice) to the loft, and from the fitted sections to the true profiles, with the sections fitted
@@ -341,52 +364,20 @@ TEST_CASE("sectioned scans: smoothing along the span against the sections one by
               std::cout << " | " << f.members.size() << " slices | | | | | | | | |\n";
               continue;
             }
-            std::mt19937 rng(7);
-            std::uniform_real_distribution<double> U(0, 1);
-            Eigen::MatrixXd T(4000, 3);
-            for (Index i = 0; i < T.rows(); ++i) {
-              const double t = U(rng);
-              const Eigen::Vector2d q = profile(2 * M_PI * U(rng), t, thick);
-              const double r = 10 + 3 * t;
-              T.row(i) << (radial ? r * std::cos(q(0) / r) : 3 * t),
-                  (radial ? r * std::sin(q(0) / r) : q(0)), (radial ? q(1) : q(1));
-            }
             for (bool smooth : {false, true}) {
               SliceFitOptions o;
               o.smooth_span = smooth;
               const SlicedFit fit = fit_sliced_scan(s.P, f, o);
-              const VectorXd d = project_to_surface(to_piecewise(fit.loft.surface), T).distance;
+              const auto [surface_rms, surface_max] = surface_error(fit, radial, thick, 4000, 7);
               const auto [rms, mx] = section_error(fit, s, radial, thick);
-              std::cout << " | " << std::sqrt(d.squaredNorm() / double(d.size())) << " | "
-                        << d.maxCoeff() << " | " << rms << " | " << mx;
+              std::cout << " | " << surface_rms << " | " << surface_max << " | " << rms << " | "
+                        << mx;
               if (smooth)
                 std::cout << " | " << fit.sections.front().control << " x " << fit.span_control;
             }
             std::cout << " |\n";
           }
 }
-
-namespace {
-
-// rms and max distance from 2000 random points of the true surface (between the first and last
-// slice) to the loft.
-std::pair<double, double> surface_error(const SlicedFit& f, bool radial, double thick) {
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> U(0, 1);
-  Eigen::MatrixXd T(2000, 3);
-  for (Index i = 0; i < T.rows(); ++i) {
-    const double t = U(rng), r = 10 + 3 * t;
-    const Eigen::Vector2d q = profile(2 * M_PI * U(rng), t, thick);
-    if (radial)
-      T.row(i) << r * std::cos(q(0) / r), r * std::sin(q(0) / r), q(1);
-    else
-      T.row(i) << 3 * t, q(0), q(1);
-  }
-  const VectorXd d = project_to_surface(to_piecewise(f.loft.surface), T).distance;
-  return {std::sqrt(d.squaredNorm() / double(d.size())), d.maxCoeff()};
-}
-
-} // namespace
 
 // Smoothing along the span: on 16 noisy slices of a smoothly twisted, tapered body, the sections
 // become isocurves of one surface, and the loft comes closer to the true surface than the loft of
@@ -401,8 +392,8 @@ TEST_CASE("sectioned scans: smoothing along the span brings the loft closer to t
     SliceFitOptions alone, smooth;
     alone.smooth_span = false;
     const SlicedFit a = fit_sliced_scan(s.P, f, alone), b = fit_sliced_scan(s.P, f, smooth);
-    const auto [ar, am] = surface_error(a, radial, 0.1);
-    const auto [br, bm] = surface_error(b, radial, 0.1);
+    const auto [ar, am] = surface_error(a, radial, 0.1, 2000, 3);
+    const auto [br, bm] = surface_error(b, radial, 0.1, 2000, 3);
     const auto [sr, sm] = section_error(b, s, radial, 0.1);
     INFO("radial " << radial << ": surface rms " << ar << " -> " << br << ", max " << am << " -> "
                    << bm << "; sections rms " << sr << ", max " << sm << "; control points "
