@@ -19,7 +19,7 @@
 namespace interlin {
 
 using detail::capped_knot_weights;
-using detail::foot_parameters;
+using detail::closest_parameters;
 using detail::kDofPerControl;
 using detail::kKnotGrid;
 using detail::kPointsPerControl;
@@ -174,7 +174,7 @@ struct Feet {
 
 Feet feet_on(const BSplineCurve& c, const MatrixXd& P, const Eigen::VectorXd& u) {
   Feet g;
-  g.t = foot_parameters(c, P, u);
+  g.t = closest_parameters(c, P, u);
   const ArcLength arc(c, 16 * int(P.rows()));
   const double f0 = arc.fraction(g.t(0));
   g.f.resize(P.rows() + 1);

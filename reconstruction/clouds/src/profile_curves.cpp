@@ -1,5 +1,7 @@
 #include "profile_curves.h"
 
+#include "nearest_neighbours.h"
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -16,14 +18,42 @@ namespace {
 // turning angle (measured 0, 1 and 2: 0 loses 3x on the section family, 2 loses 17 % there and
 // gains 11 % on Rotor 37).
 constexpr double kTurningShare = 1.0;
-// Foot points: Newton steps and the largest step (share of the period).
-constexpr int kNewtonSteps = 3;
+// Closest points: the largest Newton step (share of the period) and the most steps.
 constexpr double kMaxNewtonStep = 0.01;
 constexpr int kClosestSteps = 20;
 // A point stops when its next step is below this share of the period.
 constexpr double kConverged = 1e-10;
+// Global starts of closest_parameters: samples per knot span.
+constexpr Index kFootSamples = 8;
 // Knot spans hold at least this many points (capped_knot_weights).
 constexpr Index kPointsPerSpan = 3;
+
+// The parameter of the curve sample nearest to each point (kFootSamples evenly in each knot span,
+// FLANN): a start in the basin of the closest point, which a start from a neighbour's foot on a
+// thin profile's other side is not.
+Eigen::VectorXd nearest_samples(const PiecewiseCurve& pc, const MatrixXd& P) {
+  const Index spans = pc.breaks.size() - 1;
+  Eigen::VectorXd t(spans * kFootSamples);
+  for (Index j = 0; j < spans; ++j)
+    t.segment(j * kFootSamples, kFootSamples) =
+        Eigen::VectorXd::LinSpaced(kFootSamples + 1, pc.breaks(j), pc.breaks(j + 1))
+            .head(kFootSamples);
+  const auto in3d = [](const MatrixXd& X) {
+    Eigen::MatrixX3d Y = Eigen::MatrixX3d::Zero(X.rows(), 3);
+    Y.leftCols(std::min<Index>(3, X.cols())) = X.leftCols(std::min<Index>(3, X.cols()));
+    return Y;
+  };
+  const NeighbourIndex samples(in3d(evaluate(pc, t)));
+  const Eigen::MatrixX3d Q = in3d(P);
+  Eigen::VectorXd u(P.rows());
+  std::vector<int> idx;
+  std::vector<double> d2;
+  for (Index i = 0; i < P.rows(); ++i) {
+    samples.knn(Q.row(i).transpose(), 1, idx, d2);
+    u(i) = t(idx.front());
+  }
+  return u;
+}
 
 } // namespace
 
@@ -51,26 +81,15 @@ Eigen::VectorXd capped_knot_weights(const Eigen::VectorXd& w, const Eigen::Vecto
   return r;
 }
 
-// Hoschek's parameter correction: Newton on (C(u) - P) . C'(u) = 0, steps clamped.
-Eigen::VectorXd foot_parameters(const BSplineCurve& c, const MatrixXd& P, Eigen::VectorXd u) {
-  const double a = domain_begin(c), T = domain_end(c) - a;
-  for (int step = 0; step < kNewtonSteps; ++step) {
-    const MatrixXd C = evaluate(c, u), D1 = evaluate(c, u, 1), D2 = evaluate(c, u, 2);
-    for (Index i = 0; i < u.size(); ++i) {
-      const Eigen::RowVectorXd r = C.row(i) - P.row(i);
-      const double h = D1.row(i).squaredNorm() + r.dot(D2.row(i));
-      if (h > 0)
-        u(i) -= std::clamp(r.dot(D1.row(i)) / h, -kMaxNewtonStep * T, kMaxNewtonStep * T);
-      u(i) = a + T * ((u(i) - a) / T - std::floor((u(i) - a) / T));
-    }
-  }
-  return u;
-}
-
 Eigen::VectorXd closest_parameters(const BSplineCurve& c, const MatrixXd& P, Eigen::VectorXd u) {
   const double a = domain_begin(c), T = domain_end(c) - a;
   const PiecewiseCurve pc = to_piecewise(c);
   const auto wrap = [&](double x) { return a + T * ((x - a) / T - std::floor((x - a) / T)); };
+  const Eigen::VectorXd g = nearest_samples(pc, P);
+  const MatrixXd Cu = evaluate(pc, u), Cg = evaluate(pc, g);
+  for (Index i = 0; i < u.size(); ++i)
+    if ((Cg.row(i) - P.row(i)).squaredNorm() < (Cu.row(i) - P.row(i)).squaredNorm())
+      u(i) = g(i);
   std::vector<Index> active(size_t(u.size()));
   for (Index i = 0; i < u.size(); ++i)
     active[size_t(i)] = i;

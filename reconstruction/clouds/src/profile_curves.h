@@ -35,13 +35,12 @@ Eigen::VectorXd capped_knot_weights(const Eigen::VectorXd& w, const Eigen::Vecto
 // points everywhere, letting the noise through).
 Eigen::VectorXd turning_weights(const BSplineCurve& c, const Eigen::VectorXd& t);
 
-// Foot-point parameters (parameter correction, Hoschek 1988): Newton steps on
-// (C(u) - P) . C'(u) = 0 from u, wrapped into the curve's periodic domain. P #P by dim, u #P.
-Eigen::VectorXd foot_parameters(const BSplineCurve& c, const Eigen::MatrixXd& P, Eigen::VectorXd u);
-
-// Closest-point parameters: foot_parameters' Newton steps, each kept only where it brings the
+// Closest-point parameters (the feet of parameter correction, Hoschek 1988): from the nearer of u
+// and the nearest of 8 samples per knot span (a thin profile's other side is often nearer to a
+// neighbour's foot), Newton steps on (C(u) - P) . C'(u) = 0, each kept only where it brings the
 // point closer to the curve (else that point's next step is at most half as long), until every
-// step is below 1e-10 of the period or after 20 steps. P #P by dim, u #P.
+// step is below 1e-10 of the period or after 20 steps; wrapped into the curve's periodic domain.
+// P #P by dim (dim <= 3), u #P.
 Eigen::VectorXd closest_parameters(const BSplineCurve& c, const Eigen::MatrixXd& P,
                                    Eigen::VectorXd u);
 

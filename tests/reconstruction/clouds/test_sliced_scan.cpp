@@ -381,8 +381,8 @@ TEST_CASE("sectioned scans: smoothing along the span against the sections one by
 
 // Smoothing along the span: on 16 noisy slices of a smoothly twisted, tapered body, the sections
 // become isocurves of one surface, and the loft comes closer to the true surface than the loft of
-// the sections fitted one by one (the family's geometric mean is 0.49 of the rms,
-// docs/benchmarks.md).
+// the sections fitted one by one (the family's geometric means are 0.40 of the rms and 0.35 of
+// the max, docs/benchmarks.md).
 TEST_CASE("sectioned scans: smoothing along the span brings the loft closer to the true surface",
           "[clouds][slices]") {
   for (bool radial : {false, true}) {
@@ -401,15 +401,42 @@ TEST_CASE("sectioned scans: smoothing along the span brings the loft closer to t
     CHECK(a.span_control == 0);
     CHECK(b.span_control >= 4);
     CHECK(b.span_control <= 16);
-    // measured 0.55 (rms) and 0.58 (max) of the sections' loft, planar and radial
+    // measured 0.55 / 0.52 (rms) and 0.90 / 0.41 (max) of the sections' loft, planar / radial
     CHECK(br <= 0.7 * ar);
-    CHECK(bm <= 0.8 * am);
+    CHECK(bm <= 0.95 * am);
     CHECK(sr <= 0.3 * 0.004);
     // one knot vector for all sections, and the loft still contains them
     for (const FittedSection& fs : b.sections)
       CHECK(fs.curve.knots == b.sections.front().curve.knots);
     CHECK(b.loft.max_deviation <= 1e-9 * b.loft.bbox_diagonal);
     CHECK(b.section_gap <= 1e-9 * b.loft.bbox_diagonal);
+  }
+}
+
+// A thin profile (0.04 of the chord, nose radius about 0.0016) scanned without noise at 400 points
+// per slice: a point's foot started from its neighbour's can sit on the far side, about one
+// thickness off. Before closest_parameters searched globally, such feet inflated the sections'
+// RSS, so a net that oscillated at the nose won on C_p: its sections' max error was 0.008, 33x
+// the sections fitted alone (0.00025). Measured now: the sections alone 0.00011 (their own feet
+// are global too), and C_p keeps them, planar and radial.
+TEST_CASE("sectioned scans: smoothing along the span keeps a noise-free thin profile's nose",
+          "[clouds][slices]") {
+  for (bool radial : {false, true}) {
+    const Scan s = scan(radial, 8, 400, 0.0, 0.04, 31);
+    const SliceFamily f = detect_slices(s.P, radial ? SliceKind::radial : SliceKind::planar);
+    REQUIRE(f.members.size() == 8);
+    SliceFitOptions alone, smooth;
+    alone.smooth_span = false;
+    const SlicedFit a = fit_sliced_scan(s.P, f, alone), b = fit_sliced_scan(s.P, f, smooth);
+    const auto [ar, am] = section_error(a, s, radial, 0.04);
+    const auto [br, bm] = section_error(b, s, radial, 0.04);
+    INFO("radial " << radial << ": sections rms " << ar << " -> " << br << ", max " << am << " -> "
+                   << bm << "; control points " << b.sections.front().control << " x "
+                   << b.span_control);
+    // the sections alone: the nose's few points bound the max (measured 0.00011 both ways)
+    CHECK(am <= 2.5e-4);
+    CHECK(br <= ar);
+    CHECK(bm <= 1.25 * am);
   }
 }
 
