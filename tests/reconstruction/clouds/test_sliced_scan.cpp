@@ -338,6 +338,16 @@ std::pair<double, double> surface_error(const SlicedFit& f, bool radial, double 
   return {std::sqrt(d.squaredNorm() / double(d.size())), d.maxCoeff()};
 }
 
+// The scan's slices (`slices` of them, planar or radial) fitted one by one and smoothed along the
+// span (the default).
+std::pair<SlicedFit, SlicedFit> alone_and_smoothed(const Scan& s, bool radial, size_t slices) {
+  const SliceFamily f = detect_slices(s.P, radial ? SliceKind::radial : SliceKind::planar);
+  REQUIRE(f.members.size() == slices);
+  SliceFitOptions alone;
+  alone.smooth_span = false;
+  return {fit_sliced_scan(s.P, f, alone), fit_sliced_scan(s.P, f, SliceFitOptions{})};
+}
+
 } // namespace
 
 // Measurement, not a test (hidden tag; docs/benchmarks.md, "Sectioned scans: smoothing along the
@@ -387,11 +397,7 @@ TEST_CASE("sectioned scans: smoothing along the span brings the loft closer to t
           "[clouds][slices]") {
   for (bool radial : {false, true}) {
     const Scan s = scan(radial, 16, 400, 0.004, 0.1, 5);
-    const SliceFamily f = detect_slices(s.P, radial ? SliceKind::radial : SliceKind::planar);
-    REQUIRE(f.members.size() == 16);
-    SliceFitOptions alone, smooth;
-    alone.smooth_span = false;
-    const SlicedFit a = fit_sliced_scan(s.P, f, alone), b = fit_sliced_scan(s.P, f, smooth);
+    const auto [a, b] = alone_and_smoothed(s, radial, 16);
     const auto [ar, am] = surface_error(a, radial, 0.1, 2000, 3);
     const auto [br, bm] = surface_error(b, radial, 0.1, 2000, 3);
     const auto [sr, sm] = section_error(b, s, radial, 0.1);
@@ -423,11 +429,7 @@ TEST_CASE("sectioned scans: smoothing along the span keeps a noise-free thin pro
           "[clouds][slices]") {
   for (bool radial : {false, true}) {
     const Scan s = scan(radial, 8, 400, 0.0, 0.04, 31);
-    const SliceFamily f = detect_slices(s.P, radial ? SliceKind::radial : SliceKind::planar);
-    REQUIRE(f.members.size() == 8);
-    SliceFitOptions alone, smooth;
-    alone.smooth_span = false;
-    const SlicedFit a = fit_sliced_scan(s.P, f, alone), b = fit_sliced_scan(s.P, f, smooth);
+    const auto [a, b] = alone_and_smoothed(s, radial, 8);
     const auto [ar, am] = section_error(a, s, radial, 0.04);
     const auto [br, bm] = section_error(b, s, radial, 0.04);
     INFO("radial " << radial << ": sections rms " << ar << " -> " << br << ", max " << am << " -> "
@@ -460,11 +462,7 @@ TEST_CASE("sectioned scans: smoothing along the span costs nothing on alternatin
         s.P.row(i) = p.transpose();
       }
     }
-    const SliceFamily f = detect_slices(s.P, radial ? SliceKind::radial : SliceKind::planar);
-    REQUIRE(f.members.size() == 12);
-    SliceFitOptions alone, smooth;
-    alone.smooth_span = false;
-    const SlicedFit a = fit_sliced_scan(s.P, f, alone), b = fit_sliced_scan(s.P, f, smooth);
+    const auto [a, b] = alone_and_smoothed(s, radial, 12);
     double worst_a = 0, worst_b = 0;
     for (size_t k = 0; k < a.sections.size(); ++k) {
       worst_a = std::max(worst_a, a.sections[k].rms);
