@@ -71,6 +71,34 @@ void clip(const int n[4], const int c[4], Cut&& cut, std::vector<Tet>& out) {
   }
 }
 
+// The tetrahedra of `lists` in order, their ids (< ids) renumbered compactly in id order
+// (used[r]: the id of node r); the lists are written at their row offsets in parallel.
+Eigen::MatrixXi renumbered(const std::vector<const std::vector<Tet>*>& lists, long ids, int threads,
+                           std::vector<long>& used) {
+  std::vector<int> index(size_t(ids), -1);
+  std::vector<long> first(lists.size() + 1, 0);
+  for (size_t k = 0; k < lists.size(); ++k) {
+    first[k + 1] = first[k] + long(lists[k]->size());
+    for (const Tet& x : *lists[k])
+      for (long id : x)
+        index[size_t(id)] = 0;
+  }
+  used.clear();
+  for (long id = 0; id < ids; ++id)
+    if (index[size_t(id)] == 0)
+      index[size_t(id)] = int(used.size()), used.push_back(id);
+  Eigen::MatrixXi C(first.back(), 4);
+  detail::parallel_for(long(lists.size()), threads, [&](long k, int) {
+    long row = first[size_t(k)];
+    for (const Tet& x : *lists[size_t(k)]) {
+      for (int j = 0; j < 4; ++j)
+        C(row, j) = index[size_t(x[size_t(j)])];
+      ++row;
+    }
+  });
+  return C;
+}
+
 double signed_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                      const Eigen::Vector3d& d) {
   return (b - a).cross(c - a).dot(d - a);
@@ -227,46 +255,35 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
     if (Fc(long(r)) > epsilon)
       filled.push_back(candidates[r]);
   // Compact numbering: the used grid nodes in grid order, then the cut points in edge order.
-  std::vector<long> used;
-  long rows = 0;
   whole.push_back(std::move(filled));
-  pieces.emplace_back();
-  for (size_t k = 0; k < whole.size(); ++k)
-    for (const auto* l : {&whole[k], &pieces[k]}) {
-      rows += long(l->size());
-      for (const Tet& x : *l)
-        used.insert(used.end(), x.begin(), x.end());
-    }
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  CutTetrahedra out;
-  out.V.resize(long(used.size()), 3);
-  for (size_t r = 0; r < used.size(); ++r) {
-    const long id = used[r];
-    if (id < G) {
-      out.V.row(long(r)) = position(id).transpose();
-      out.warped += warped(id) >= 0;
-    } else {
-      const long e = id - G;
-      out.V.row(long(r)) = A.row(e) + t(e) * (B.row(e) - A.row(e));
-      ++out.cut_nodes;
-    }
-  }
-  out.C.resize(rows, 4);
-  long row = 0;
-  auto emit = [&](const std::vector<Tet>& l) {
-    for (const Tet& x : l) {
-      for (int j = 0; j < 4; ++j)
-        out.C(row, j) =
-            int(std::lower_bound(used.begin(), used.end(), x[size_t(j)]) - used.begin());
-      ++row;
-    }
-  };
+  std::vector<const std::vector<Tet>*> lists;
   for (const auto& l : whole)
-    emit(l);
-  out.whole = row;
+    lists.push_back(&l);
   for (const auto& l : pieces)
-    emit(l);
+    lists.push_back(&l);
+  CutTetrahedra out;
+  std::vector<long> used;
+  out.C = renumbered(lists, G + ne, threads, used);
+  for (const auto& l : whole)
+    out.whole += long(l.size());
+  out.V.resize(long(used.size()), 3);
+  constexpr long kNodes = 8192; // nodes per task
+  const long tasks = (long(used.size()) + kNodes - 1) / kNodes;
+  std::vector<long> warped_in(size_t(tasks), 0);
+  detail::parallel_for(tasks, threads, [&](long task, int) {
+    for (long r = task * kNodes; r < std::min(long(used.size()), (task + 1) * kNodes); ++r) {
+      const long id = used[size_t(r)], e = id - G;
+      if (id < G) {
+        out.V.row(r) = position(id).transpose();
+        warped_in[size_t(task)] += warped(id) >= 0;
+      } else {
+        out.V.row(r) = A.row(e) + t(e) * (B.row(e) - A.row(e));
+      }
+    }
+  });
+  for (long w : warped_in)
+    out.warped += w;
+  out.cut_nodes = long(used.end() - std::lower_bound(used.begin(), used.end(), G));
   return out;
 }
 

@@ -75,10 +75,11 @@ std::vector<std::pair<long, int>> elements_by_cube(const RegularGrid& g, const E
 }
 
 // The area of each tetrahedron's faces that lie on the boundary of T (F = 0 or the box), and the
-// sum over the flagged ones in tetrahedron order.
+// sum over the flagged ones in tetrahedron order (the facets found on `threads` threads).
 double boundary_area_of(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T,
-                        const std::vector<char>& flagged, std::vector<double>& per_tetrahedron) {
-  const Eigen::MatrixXi B = boundary_facets(T);
+                        const std::vector<char>& flagged, std::vector<double>& per_tetrahedron,
+                        int threads) {
+  const Eigen::MatrixXi B = boundary_facets(T, threads);
   std::vector<std::array<int, 3>> keys(size_t(B.rows()));
   for (long r = 0; r < B.rows(); ++r) {
     keys[size_t(r)] = {B(r, 0), B(r, 1), B(r, 2)};
@@ -162,11 +163,11 @@ thickness_distribution(const std::vector<std::pair<long, Eigen::Vector2d>>& lost
 // out.lost_area and out.lost_by_thickness from the lost pieces (flagged) and each piece's cube.
 void measure_lost_walls(const CutTetrahedra& body, const Eigen::Array3i& cells,
                         const std::vector<char>& lost, const std::vector<long>& cube_of,
-                        UncoveredVolume& out) {
+                        UncoveredVolume& out, int threads) {
   const Eigen::MatrixXd& P = body.V;
   const Eigen::MatrixXi& T = body.C;
   std::vector<double> area;
-  out.lost_area = boundary_area_of(P, T, lost, area);
+  out.lost_area = boundary_area_of(P, T, lost, area, threads);
   std::vector<Eigen::Vector2d> piece(size_t(T.rows())); // volume, boundary area
   for (long e = 0; e < T.rows(); ++e) {
     const Eigen::Vector3d a = P.row(T(e, 0)), b = P.row(T(e, 1)), c = P.row(T(e, 2)),
@@ -244,7 +245,7 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
     out.body += body_part[size_t(t)], out.lost += lost_part[size_t(t)];
   if (out.lost == 0)
     return out;
-  measure_lost_walls(body, cells, lost, cube_of, out);
+  measure_lost_walls(body, cells, lost, cube_of, out, threads);
   return out;
 }
 
