@@ -133,7 +133,7 @@ std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunctio
   };
   const std::vector<RefinementReport> reports =
       adapt_tetrahedra(m.V, m.C, m.boundary, values, q.delta, q.passes, f);
-  m.B = boundary_facets(m.C);
+  m.B = boundary_facets(m.C, o.threads);
   VolumeSmoothingOptions so;
   so.sweeps = o.interior_sweeps;
   so.threads = o.threads;

@@ -71,6 +71,58 @@ void clip(const int n[4], const int c[4], Cut&& cut, std::vector<Tet>& out) {
   }
 }
 
+constexpr long kBatch = 8192; // edges or nodes per task
+
+// The cut edges sorted, without repeats, from each layer of cubes' edges by the node layer of their
+// inside node (own: the cubes' lower layer, up: the upper one): each node layer's edges are sorted
+// on their own (in parallel), and their concatenation is in order.
+std::vector<Edge> layered_edges(std::vector<std::vector<Edge>>& own,
+                                const std::vector<std::vector<Edge>>& up, int threads) {
+  const long layers = long(own.size()) + 1;
+  std::vector<std::vector<Edge>> in_layer(static_cast<size_t>(layers));
+  detail::parallel_for(layers, threads, [&](long k, int) {
+    std::vector<Edge>& l = in_layer[size_t(k)];
+    if (k + 1 < layers)
+      l = std::move(own[size_t(k)]);
+    if (k > 0)
+      l.insert(l.end(), up[size_t(k - 1)].begin(), up[size_t(k - 1)].end());
+    std::sort(l.begin(), l.end());
+    l.erase(std::unique(l.begin(), l.end()), l.end());
+  });
+  std::vector<Edge> E;
+  for (const auto& l : in_layer)
+    E.insert(E.end(), l.begin(), l.end());
+  return E;
+}
+
+// The tetrahedra of `lists` in order, their ids (< ids) renumbered compactly in id order
+// (used[r]: the id of node r); the lists are written at their row offsets in parallel.
+Eigen::MatrixXi renumbered(const std::vector<const std::vector<Tet>*>& lists, long ids, int threads,
+                           std::vector<long>& used) {
+  std::vector<int> index(size_t(ids), -1);
+  std::vector<long> first(lists.size() + 1, 0);
+  for (size_t k = 0; k < lists.size(); ++k) {
+    first[k + 1] = first[k] + long(lists[k]->size());
+    for (const Tet& x : *lists[k])
+      for (long id : x)
+        index[size_t(id)] = 0;
+  }
+  used.clear();
+  for (long id = 0; id < ids; ++id)
+    if (index[size_t(id)] == 0)
+      index[size_t(id)] = int(used.size()), used.push_back(id);
+  Eigen::MatrixXi C(first.back(), 4);
+  detail::parallel_for(long(lists.size()), threads, [&](long k, int) {
+    long row = first[size_t(k)];
+    for (const Tet& x : *lists[size_t(k)]) {
+      for (int j = 0; j < 4; ++j)
+        C(row, j) = index[size_t(x[size_t(j)])];
+      ++row;
+    }
+  });
+  return C;
+}
+
 double signed_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                      const Eigen::Vector3d& d) {
   return (b - a).cross(c - a).dot(d - a);
@@ -91,7 +143,7 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
   // Pass 1, layers of cubes in parallel: the background tetrahedra with an inside node, whole
   // (no outside node) or mixed, and the edges to cut.
   std::vector<std::vector<Tet>> whole(size_t(std::max(cz, 0L))), mixed(whole.size());
-  std::vector<std::vector<Edge>> edges(whole.size());
+  std::vector<std::vector<Edge>> own(whole.size()), up(whole.size());
   detail::parallel_for(cz, threads, [&](long k, int) {
     std::vector<long> ids;
     for (long q = k * cx * cy; q < (k + 1) * cx * cy; ++q) {
@@ -113,26 +165,25 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
       (outside == 0 ? whole : mixed)[size_t(k)].push_back(t);
       for (int a = 0; outside > 0 && a < 4; ++a)
         for (int b = 0; b < 4; ++b)
-          if (c[a] > 0 && c[b] < 0)
-            edges[size_t(k)].push_back({t[size_t(a)], t[size_t(b)]});
+          if (c[a] > 0 && c[b] < 0) // by the node layer of the inside node
+            (t[size_t(a)] < (k + 1) * nx * ny ? own : up)[size_t(k)].push_back(
+                {t[size_t(a)], t[size_t(b)]});
     }
   });
-  std::vector<Edge> E;
-  for (const auto& l : edges)
-    E.insert(E.end(), l.begin(), l.end());
-  std::sort(E.begin(), E.end());
-  E.erase(std::unique(E.begin(), E.end()), E.end());
+  const std::vector<Edge> E = layered_edges(own, up, threads);
   auto point = [&](long n) { return g.point(n % nx, (n / nx) % ny, n / (nx * ny)); };
   // The cut points: roots of F on the edges, and (for orientation) of the linear interpolant.
   const long ne = long(E.size());
   Points3 A(ne, 3), B(ne, 3);
   Eigen::VectorXd FA(ne), FB(ne), lin(ne);
-  for (long e = 0; e < ne; ++e) {
-    A.row(e) = point(E[size_t(e)].first).transpose();
-    B.row(e) = point(E[size_t(e)].second).transpose();
-    FA(e) = S(E[size_t(e)].first), FB(e) = S(E[size_t(e)].second);
-    lin(e) = FA(e) / (FA(e) - FB(e));
-  }
+  detail::parallel_for((ne + kBatch - 1) / kBatch, threads, [&](long task, int) {
+    for (long e = task * kBatch; e < std::min(ne, (task + 1) * kBatch); ++e) {
+      A.row(e) = point(E[size_t(e)].first).transpose();
+      B.row(e) = point(E[size_t(e)].second).transpose();
+      FA(e) = S(E[size_t(e)].first), FB(e) = S(E[size_t(e)].second);
+      lin(e) = FA(e) / (FA(e) - FB(e));
+    }
+  });
   RootOptions ro;
   ro.threads = threads;
   const Eigen::VectorXd t = ne > 0 ? roots_on_segments(f, A, B, FA, FB, ro) : Eigen::VectorXd();
@@ -227,46 +278,34 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
     if (Fc(long(r)) > epsilon)
       filled.push_back(candidates[r]);
   // Compact numbering: the used grid nodes in grid order, then the cut points in edge order.
-  std::vector<long> used;
-  long rows = 0;
   whole.push_back(std::move(filled));
-  pieces.emplace_back();
-  for (size_t k = 0; k < whole.size(); ++k)
-    for (const auto* l : {&whole[k], &pieces[k]}) {
-      rows += long(l->size());
-      for (const Tet& x : *l)
-        used.insert(used.end(), x.begin(), x.end());
-    }
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  CutTetrahedra out;
-  out.V.resize(long(used.size()), 3);
-  for (size_t r = 0; r < used.size(); ++r) {
-    const long id = used[r];
-    if (id < G) {
-      out.V.row(long(r)) = position(id).transpose();
-      out.warped += warped(id) >= 0;
-    } else {
-      const long e = id - G;
-      out.V.row(long(r)) = A.row(e) + t(e) * (B.row(e) - A.row(e));
-      ++out.cut_nodes;
-    }
-  }
-  out.C.resize(rows, 4);
-  long row = 0;
-  auto emit = [&](const std::vector<Tet>& l) {
-    for (const Tet& x : l) {
-      for (int j = 0; j < 4; ++j)
-        out.C(row, j) =
-            int(std::lower_bound(used.begin(), used.end(), x[size_t(j)]) - used.begin());
-      ++row;
-    }
-  };
+  std::vector<const std::vector<Tet>*> lists;
   for (const auto& l : whole)
-    emit(l);
-  out.whole = row;
+    lists.push_back(&l);
   for (const auto& l : pieces)
-    emit(l);
+    lists.push_back(&l);
+  CutTetrahedra out;
+  std::vector<long> used;
+  out.C = renumbered(lists, G + ne, threads, used);
+  for (const auto& l : whole)
+    out.whole += long(l.size());
+  out.V.resize(long(used.size()), 3);
+  const long tasks = (long(used.size()) + kBatch - 1) / kBatch;
+  std::vector<long> warped_in(size_t(tasks), 0);
+  detail::parallel_for(tasks, threads, [&](long task, int) {
+    for (long r = task * kBatch; r < std::min(long(used.size()), (task + 1) * kBatch); ++r) {
+      const long id = used[size_t(r)], e = id - G;
+      if (id < G) {
+        out.V.row(r) = position(id).transpose();
+        warped_in[size_t(task)] += warped(id) >= 0;
+      } else {
+        out.V.row(r) = A.row(e) + t(e) * (B.row(e) - A.row(e));
+      }
+    }
+  });
+  for (long w : warped_in)
+    out.warped += w;
+  out.cut_nodes = long(used.end() - std::lower_bound(used.begin(), used.end(), G));
   return out;
 }
 

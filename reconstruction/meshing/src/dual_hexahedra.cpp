@@ -138,7 +138,7 @@ std::vector<char> project_cut_points(const ImplicitFunction& f, const RegularGri
   Eigen::MatrixXd P(long(rows.size()), 3);
   for (size_t k = 0; k < rows.size(); ++k)
     P.row(long(k)) = target.row(rows[k]);
-  const Eigen::MatrixXd D = outward_directions(f, P, 1e-3 * h);
+  const Eigen::MatrixXd D = outward_directions(f, P, 1e-3 * h, threads);
   RootOptions ro;
   ro.threads = threads;
   std::vector<char> ok;
@@ -212,7 +212,7 @@ void project_held(const ImplicitFunction& f, double h, const Eigen::MatrixXi& C,
   Eigen::MatrixXd P(long(rows.size()), 3);
   for (size_t k = 0; k < rows.size(); ++k)
     P.row(long(k)) = V.row(rows[k]);
-  const Eigen::MatrixXd before = P, D = outward_directions(f, P, 1e-3 * h);
+  const Eigen::MatrixXd before = P, D = outward_directions(f, P, 1e-3 * h, threads);
   RootOptions ro;
   ro.threads = threads;
   std::vector<char> ok;
@@ -340,7 +340,7 @@ Eigen::MatrixXd project_side_points(const ImplicitFunction& f, double h, const S
     for (size_t j = 0; j < rows.size(); ++j)
       Q.row(long(j)) = sp.root.row(rows[j]), D.row(long(j)) = sp.side.row(rows[j]);
     if (!along_side)
-      D = outward_directions(f, Q, 1e-3 * h);
+      D = outward_directions(f, Q, 1e-3 * h, threads);
     std::vector<char> ok;
     project_along(f, Q, D, Eigen::VectorXd::Constant(Q.rows(), kStep * h), ro, &ok, reach / kStep,
                   1);
@@ -506,7 +506,8 @@ DualHexahedra dual_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
   std::vector<double> s(out.boundary.size(), 1);
   const Eigen::MatrixXi corners = corner_table(8);
   for (int round = 0;; ++round) {
-    const Eigen::MatrixXd A = corner_alphas(out.V, out.C); // per round (moves within it lag)
+    const Eigen::MatrixXd A =
+        corner_alphas(out.V, out.C, threads); // per round (moves within it lag)
     bool folded = false;
     for (long e = 0; e < out.C.rows(); ++e) {
       if (min_corner_jacobian(out.V, out.C, e, corners, &A) >= kMinScaledJacobian)

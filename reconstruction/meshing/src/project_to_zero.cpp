@@ -301,12 +301,21 @@ long project_along(const ImplicitFunction& f, Eigen::MatrixXd& P, const Eigen::M
   });
 }
 
-Eigen::MatrixXd outward_directions(const ImplicitFunction& f, const Eigen::MatrixXd& P, double h) {
+Eigen::MatrixXd outward_directions(const ImplicitFunction& f, const Eigen::MatrixXd& P, double h,
+                                   int threads) {
   if (P.cols() != 3)
     throw std::invalid_argument("outward_directions: P must be #P by 3");
   if (!f.gradient && !(h > 0))
     throw std::invalid_argument("outward_directions: difference step must be > 0");
-  return directions(f, P, Eigen::VectorXd::Constant(P.rows(), 0.5 * h));
+  const long n = P.rows();
+  Eigen::MatrixXd D(n, 3);
+  detail::parallel_for(
+      (n + kChunk - 1) / kChunk, detail::resolve_threads(threads), [&](long c, int) {
+        const long r0 = c * kChunk, m = std::min(n, r0 + kChunk) - r0;
+        D.middleRows(r0, m) =
+            directions(f, P.middleRows(r0, m), Eigen::VectorXd::Constant(m, 0.5 * h));
+      });
+  return D;
 }
 
 long project_by_gradient_walk(const ImplicitFunction& f, Eigen::MatrixXd& P,

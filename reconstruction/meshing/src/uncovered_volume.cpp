@@ -75,10 +75,11 @@ std::vector<std::pair<long, int>> elements_by_cube(const RegularGrid& g, const E
 }
 
 // The area of each tetrahedron's faces that lie on the boundary of T (F = 0 or the box), and the
-// sum over the flagged ones in tetrahedron order.
+// sum over the flagged ones (in batches of tetrahedra on `threads` threads, added in order).
 double boundary_area_of(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T,
-                        const std::vector<char>& flagged, std::vector<double>& per_tetrahedron) {
-  const Eigen::MatrixXi B = boundary_facets(T);
+                        const std::vector<char>& flagged, std::vector<double>& per_tetrahedron,
+                        int threads) {
+  const Eigen::MatrixXi B = boundary_facets(T, threads);
   std::vector<std::array<int, 3>> keys(size_t(B.rows()));
   for (long r = 0; r < B.rows(); ++r) {
     keys[size_t(r)] = {B(r, 0), B(r, 1), B(r, 2)};
@@ -86,22 +87,29 @@ double boundary_area_of(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T,
   }
   std::sort(keys.begin(), keys.end());
   per_tetrahedron.assign(size_t(T.rows()), 0);
-  double area = 0;
-  for (long e = 0; e < T.rows(); ++e)
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> k;
-      for (int j = 0, n = 0; j < 4; ++j)
-        if (j != skip)
-          k[size_t(n++)] = T(e, j);
-      std::sort(k.begin(), k.end());
-      if (std::binary_search(keys.begin(), keys.end(), k)) {
+  constexpr long kChunk = 4096; // tetrahedra per task; partial sums added in task order
+  const long tasks = (T.rows() + kChunk - 1) / kChunk;
+  std::vector<double> part(size_t(tasks), 0);
+  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
+    for (long e = task * kChunk; e < std::min(T.rows(), (task + 1) * kChunk); ++e)
+      for (int skip = 0; skip < 4; ++skip) {
+        std::array<int, 3> k;
+        for (int j = 0, n = 0; j < 4; ++j)
+          if (j != skip)
+            k[size_t(n++)] = T(e, j);
+        std::sort(k.begin(), k.end());
+        if (!std::binary_search(keys.begin(), keys.end(), k))
+          continue;
         const Eigen::Vector3d a = P.row(k[0]), b = P.row(k[1]), c = P.row(k[2]);
         const double facet = (b - a).cross(c - a).norm() / 2;
         per_tetrahedron[size_t(e)] += facet;
         if (flagged[size_t(e)])
-          area += facet;
+          part[size_t(task)] += facet;
       }
-    }
+  });
+  double area = 0;
+  for (double a : part)
+    area += a;
   return area;
 }
 
@@ -162,11 +170,11 @@ thickness_distribution(const std::vector<std::pair<long, Eigen::Vector2d>>& lost
 // out.lost_area and out.lost_by_thickness from the lost pieces (flagged) and each piece's cube.
 void measure_lost_walls(const CutTetrahedra& body, const Eigen::Array3i& cells,
                         const std::vector<char>& lost, const std::vector<long>& cube_of,
-                        UncoveredVolume& out) {
+                        UncoveredVolume& out, int threads) {
   const Eigen::MatrixXd& P = body.V;
   const Eigen::MatrixXi& T = body.C;
   std::vector<double> area;
-  out.lost_area = boundary_area_of(P, T, lost, area);
+  out.lost_area = boundary_area_of(P, T, lost, area, threads);
   std::vector<Eigen::Vector2d> piece(size_t(T.rows())); // volume, boundary area
   for (long e = 0; e < T.rows(); ++e) {
     const Eigen::Vector3d a = P.row(T(e, 0)), b = P.row(T(e, 1)), c = P.row(T(e, 2)),
@@ -244,7 +252,7 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
     out.body += body_part[size_t(t)], out.lost += lost_part[size_t(t)];
   if (out.lost == 0)
     return out;
-  measure_lost_walls(body, cells, lost, cube_of, out);
+  measure_lost_walls(body, cells, lost, cube_of, out, threads);
   return out;
 }
 

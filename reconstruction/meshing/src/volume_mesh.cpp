@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,89 @@ constexpr double kLayerReach = 8;
 constexpr int kTetFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 constexpr int kHexFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                 {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+
+// The facets of the elements C (#C by 4 or 8), numbered id = element x faces + face, their
+// corners in the order of kTetFace or kHexFace (outward).
+struct ElementFacets {
+  const Eigen::MatrixXi& C;
+  bool tets = C.cols() == 4;
+  int faces = tets ? 4 : 6, per = tets ? 3 : 4;
+
+  int corner(long id, int j) const {
+    return C(id / faces, tets ? kTetFace[id % faces][j] : kHexFace[id % faces][j]);
+  }
+  int smallest(long id) const {
+    int m = corner(id, 0);
+    for (int j = 1; j < per; ++j)
+      m = std::min(m, corner(id, j));
+    return m;
+  }
+  std::array<int, 4> key(long id) const { // the sorted corners (a triangle's fourth INT_MAX)
+    std::array<int, 4> k;
+    k.fill(INT_MAX);
+    for (int j = 0; j < per; ++j)
+      k[size_t(j)] = corner(id, j);
+    std::sort(k.begin(), k.end());
+    return k;
+  }
+  // Flags (once[id]) the facets of `bucket` (key, id) whose key no other one has.
+  static void mark_once(std::vector<std::pair<std::array<int, 4>, long>>& bucket,
+                        std::vector<char>& once) {
+    std::sort(bucket.begin(), bucket.end());
+    for (size_t s = 0; s < bucket.size(); ++s)
+      once[size_t(bucket[s].second)] =
+          (s == 0 || bucket[s - 1].first != bucket[s].first) &&
+          (s + 1 == bucket.size() || bucket[s + 1].first != bucket[s].first);
+  }
+};
+
+// body(r0, m) for the rows [r0, r0 + m) of [0, n) in batches of kBatch, on `threads` threads.
+template <class Body>
+void for_batches(long n, int threads, Body&& body) {
+  constexpr long kBatch = 4096; // points or elements per task
+  detail::parallel_for((n + kBatch - 1) / kBatch, detail::resolve_threads(threads),
+                       [&](long task, int) {
+                         const long r0 = task * kBatch;
+                         body(r0, std::min(n, r0 + kBatch) - r0);
+                       });
+}
+
+// F at the rows of P, in batches on `threads` threads.
+Eigen::VectorXd values(const ImplicitFunction& f, const Points3& P, int threads) {
+  Eigen::VectorXd F(P.rows());
+  for_batches(P.rows(), threads,
+              [&](long r0, long m) { f.value(P.middleRows(r0, m), F.segment(r0, m)); });
+  return F;
+}
+
+// F and grad F at the rows of X: f.gradient, else central differences with step d.
+void value_and_gradient(const ImplicitFunction& f, const Points3& X, double d,
+                        Eigen::Ref<Eigen::VectorXd> F, Eigen::Ref<Points3> G) {
+  if (f.gradient) {
+    f.gradient(X, F, G);
+    return;
+  }
+  f.value(X, F);
+  for (int a = 0; a < 3; ++a) {
+    Points3 Q = X;
+    Eigen::VectorXd Fp(X.rows()), Fm(X.rows());
+    Q.col(a).array() += d;
+    f.value(Q, Fp);
+    Q.col(a).array() -= 2 * d;
+    f.value(Q, Fm);
+    G.col(a) = (Fp - Fm) / (2 * d);
+  }
+}
+
+// value_and_gradient at the rows of P, in batches on `threads` threads.
+void values_and_gradients(const ImplicitFunction& f, const Points3& P, double d, int threads,
+                          Eigen::VectorXd& F, Points3& G) {
+  F.resize(P.rows());
+  G.resize(P.rows(), 3);
+  for_batches(P.rows(), threads, [&](long r0, long m) {
+    value_and_gradient(f, P.middleRows(r0, m), d, F.segment(r0, m), G.middleRows(r0, m));
+  });
+}
 
 // Nodes with |F| <= epsilon none of whose 26 neighbours is outside (F < -epsilon) lie on a sheet
 // where F touches zero inside the body (R-function unions of parts that meet face to face, such
@@ -98,23 +182,9 @@ long drop_near_surface(const ImplicitFunction& f, const RegularGrid& g, Eigen::V
     const long n = cand[r];
     P.row(long(r)) = g.point(n % nx, (n / nx) % ny, n / slice).transpose();
   }
-  Eigen::VectorXd F(P.rows());
-  Points3 G(P.rows(), 3);
-  if (f.gradient) {
-    f.gradient(P, F, G);
-  } else { // central differences, step 1e-3 h
-    const double d = 1e-3 * g.spacing.minCoeff();
-    f.value(P, F);
-    for (int a = 0; a < 3; ++a) {
-      Points3 Q = P;
-      Eigen::VectorXd Fp(P.rows()), Fm(P.rows());
-      Q.col(a).array() += d;
-      f.value(Q, Fp);
-      Q.col(a).array() -= 2 * d;
-      f.value(Q, Fm);
-      G.col(a) = (Fp - Fm) / (2 * d);
-    }
-  }
+  Eigen::VectorXd F;
+  Points3 G;
+  values_and_gradients(f, P, 1e-3 * g.spacing.minCoeff(), bo.threads, F, G);
   // The point `distance` down the gradient: the node is near the surface when F has changed sign
   // there (F / |grad F| alone misleads where an R-function joins parts: inside the union the
   // gradient of the part that vanishes on the seam dominates).
@@ -124,8 +194,7 @@ long drop_near_surface(const ImplicitFunction& f, const RegularGrid& g, Eigen::V
     if (std::isfinite(grad) && grad > 0)
       Q.row(r) -= distance / grad * G.row(r);
   }
-  Eigen::VectorXd FQ(Q.rows());
-  f.value(Q, FQ);
+  const Eigen::VectorXd FQ = values(f, Q, bo.threads);
   long dropped = 0;
   for (size_t r = 0; r < cand.size(); ++r)
     if (!(FQ(long(r)) > 0) && G.row(long(r)).allFinite() && G.row(long(r)).norm() > 0) {
@@ -152,22 +221,31 @@ void split_prism(const int b[3], const int t[3], std::array<std::array<int, 4>, 
       out[size_t(k)][size_t(j)] = v[local[k][j]];
 }
 
+// is(e) for the elements e in [0, elements), in batches on `threads` threads.
+template <class Predicate>
+std::vector<char> element_flags(long elements, int threads, Predicate&& is) {
+  std::vector<char> flags(static_cast<size_t>(elements));
+  for_batches(elements, threads, [&](long e0, long m) {
+    for (long e = e0; e < e0 + m; ++e)
+      flags[size_t(e)] = is(e);
+  });
+  return flags;
+}
+
 // The elements folded at a corner (alpha <= 0) or, hexahedra, at the centre (the trilinear map's
 // Jacobian <= 0 there, though every corner may be convex: volume_quality counts both).
-std::vector<char> folded_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C) {
-  const Eigen::MatrixXd A = corner_alphas(V, C);
-  std::vector<char> folded(size_t(C.rows()));
-  for (long e = 0; e < C.rows(); ++e) {
-    bool f = !(A.row(e).minCoeff() > 0);
-    if (!f && C.cols() == 8) {
-      Eigen::Vector3d p[8];
-      for (int j = 0; j < 8; ++j)
-        p[j] = V.row(C(e, j)).transpose();
-      f = !(detail::centre_jacobian(p) > 0);
-    }
-    folded[size_t(e)] = f;
-  }
-  return folded;
+std::vector<char> folded_elements(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, int threads) {
+  const Eigen::MatrixXd A = corner_alphas(V, C, threads);
+  return element_flags(C.rows(), threads, [&](long e) {
+    if (!(A.row(e).minCoeff() > 0))
+      return true;
+    if (C.cols() != 8)
+      return false;
+    Eigen::Vector3d p[8];
+    for (int j = 0; j < 8; ++j)
+      p[j] = V.row(C(e, j)).transpose();
+    return !(detail::centre_jacobian(p) > 0);
+  });
 }
 
 // Nodes flagged movable of folded elements (folded_elements) go back to where they were in
@@ -175,10 +253,10 @@ std::vector<char> folded_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
 // grid's small element across its opposite face, interior smoothing one beside a held layer
 // element across it. Returns the nodes put back.
 long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& movable,
-                    const Eigen::MatrixXi& C, Eigen::MatrixXd& V) {
+                    const Eigen::MatrixXi& C, int threads, Eigen::MatrixXd& V) {
   long restored = 0;
   for (;;) {
-    const std::vector<char> folded = folded_elements(V, C);
+    const std::vector<char> folded = folded_elements(V, C, threads);
     long moved = 0;
     for (long e = 0; e < C.rows(); ++e) {
       if (!folded[size_t(e)])
@@ -246,8 +324,8 @@ std::vector<std::vector<Eigen::RowVector3d>> layer_corner_normals(const Eigen::M
 // Flags the layer nodes n_inner + r (in[r], #n_top) of the folded elements (folded_elements).
 // Returns whether there is one.
 bool folded_layer_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, long n_inner,
-                        long n_top, std::vector<char>& in) {
-  const std::vector<char> folded = folded_elements(V, C);
+                        long n_top, int threads, std::vector<char>& in) {
+  const std::vector<char> folded = folded_elements(V, C, threads);
   in.assign(size_t(n_top), 0);
   bool any = false;
   for (long e = 0; e < C.rows(); ++e)
@@ -263,12 +341,13 @@ bool folded_layer_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, long
 // kHoldHalvings rounds (a layer element h / 1024 high folds only where its edge directions or its
 // inner face do).
 void halve_while_folded(const Eigen::MatrixXi& C, const std::vector<int>& below, long n_inner,
-                        const Eigen::MatrixXd& target, std::vector<double>& s, Eigen::MatrixXd& V) {
+                        const Eigen::MatrixXd& target, int threads, std::vector<double>& s,
+                        Eigen::MatrixXd& V) {
   constexpr int kHoldHalvings = 10;
   const long n_top = long(below.size());
   std::vector<char> pull;
   for (int round = 0; round < kHoldHalvings; ++round) {
-    if (!folded_layer_nodes(C, V, n_inner, n_top, pull))
+    if (!folded_layer_nodes(C, V, n_inner, n_top, threads, pull))
       return;
     for (long r = 0; r < n_top; ++r)
       if (pull[size_t(r)]) {
@@ -286,19 +365,19 @@ void halve_while_folded(const Eigen::MatrixXi& C, const std::vector<int>& below,
 // staircase corner): such nodes get a direction above all their bottom faces (direction_above),
 // the same length (at least h / 2), and are held again (at most kAimRounds times). Returns the
 // nodes held short of F = 0 (flagged in held).
-long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, double h,
+long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, double h, int threads,
                        Eigen::MatrixXd& V, std::vector<char>& held) {
   const std::vector<int>& below = layer.below;
   const long n_inner = layer.n_inner, n_top = long(below.size());
   Eigen::MatrixXd target = V.bottomRows(n_top);
   std::vector<double> s(size_t(n_top), 1);
-  halve_while_folded(C, below, n_inner, target, s, V);
+  halve_while_folded(C, below, n_inner, target, threads, s, V);
   constexpr int kAimRounds = 3; // re-aiming one node can fold an element of a neighbour
   const auto normals = layer_corner_normals(layer.bottom, layer.top, n_inner, n_top, V);
   std::vector<char> aimed(size_t(n_top), 0);
   std::vector<char> redo;
   for (int round = 0; round < kAimRounds; ++round) {
-    if (!folded_layer_nodes(C, V, n_inner, n_top, redo))
+    if (!folded_layer_nodes(C, V, n_inner, n_top, threads, redo))
       break;
     for (long r = 0; r < n_top; ++r) {
       if (!redo[size_t(r)] || normals[size_t(r)].empty())
@@ -313,7 +392,7 @@ long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, do
       aimed[size_t(r)] = 1;
       V.row(n_inner + r) = target.row(r);
     }
-    halve_while_folded(C, below, n_inner, target, s, V);
+    halve_while_folded(C, below, n_inner, target, threads, s, V);
   }
   held.assign(size_t(V.rows()), 0);
   long count = 0;
@@ -328,7 +407,7 @@ long hold_folded_layer(const Eigen::MatrixXi& C, const ProjectedLayer& layer, do
 // mesh leaves on the box faces where the body reaches the box are not. Sets max_f, the largest |F|
 // over them (0 when there is none).
 long boundary_on_zero(const ImplicitFunction& f, double h, const VolumeMesh& vm,
-                      const std::vector<char>& skip, double& max_f) {
+                      const std::vector<char>& skip, int threads, double& max_f) {
   constexpr double kOnZero = 1e-6; // the roots are found to 1e-10 of a bracket within a cell
   std::vector<long> nodes;
   for (size_t v = 0; v < vm.boundary.size(); ++v)
@@ -337,23 +416,9 @@ long boundary_on_zero(const ImplicitFunction& f, double h, const VolumeMesh& vm,
   Points3 P(long(nodes.size()), 3);
   for (size_t r = 0; r < nodes.size(); ++r)
     P.row(long(r)) = vm.V.row(nodes[r]);
-  Eigen::VectorXd F(P.rows());
-  Points3 G(P.rows(), 3);
-  if (f.gradient) {
-    f.gradient(P, F, G);
-  } else {
-    const double d = 1e-4 * h;
-    f.value(P, F);
-    for (int a = 0; a < 3; ++a) {
-      Points3 Q = P;
-      Eigen::VectorXd Fp(P.rows()), Fm(P.rows());
-      Q.col(a).array() += d;
-      f.value(Q, Fp);
-      Q.col(a).array() -= 2 * d;
-      f.value(Q, Fm);
-      G.col(a) = (Fp - Fm) / (2 * d);
-    }
-  }
+  Eigen::VectorXd F;
+  Points3 G;
+  values_and_gradients(f, P, 1e-4 * h, threads, F, G);
   long on = 0;
   max_f = 0;
   for (long r = 0; r < P.rows(); ++r)
@@ -400,10 +465,10 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
     for (size_t r = 0; r < nodes.size(); ++r)
       vm.V.row(nodes[r]) = Vb.row(long(r));
     if (layer == nullptr) // the projected layer's folds are held below
-      restore_folded(before, vm.boundary, vm.C, vm.V);
+      restore_folded(before, vm.boundary, vm.C, o.threads, vm.V);
   }
   if (layer != nullptr) // a valid mesh before the interior moves
-    out.held = hold_folded_layer(vm.C, *layer, h, vm.V, held);
+    out.held = hold_folded_layer(vm.C, *layer, h, o.threads, vm.V, held);
   if (o.interior_sweeps > 0) {
     say("smoothing the interior, " + std::to_string(o.interior_sweeps) + " sweeps (functional 15)");
     VolumeSmoothingOptions so;
@@ -415,16 +480,16 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
       std::vector<char> interior(vm.boundary.size());
       std::transform(vm.boundary.begin(), vm.boundary.end(), interior.begin(),
                      [](char b) { return char(!b); });
-      restore_folded(before, interior, vm.C, vm.V);
+      restore_folded(before, interior, vm.C, o.threads, vm.V);
     }
   }
-  out.on_zero = boundary_on_zero(f, h, vm, held, out.max_boundary_f);
+  out.on_zero = boundary_on_zero(f, h, vm, held, o.threads, out.max_boundary_f);
 }
 
-// vm.B, the element facets used once (facet_corners columns when there are no elements), and
-// vm.boundary, which nodes lie on them.
-void mark_boundary(VolumeMesh& vm, int facet_corners) {
-  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C) : Eigen::MatrixXi(0, facet_corners);
+// vm.B, the element facets used once (facet_corners columns when there are no elements; on
+// `threads` threads), and vm.boundary, which nodes lie on them.
+void mark_boundary(VolumeMesh& vm, int facet_corners, int threads) {
+  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C, threads) : Eigen::MatrixXi(0, facet_corners);
   vm.boundary.assign(size_t(vm.V.rows()), 0);
   for (long i = 0; i < vm.B.size(); ++i)
     vm.boundary[size_t(vm.B.data()[i])] = 1;
@@ -455,7 +520,7 @@ VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g, Eigen::Vect
   vm.C = std::move(cut.C);
   out.inner_cells = cut.whole;
   out.layer_elements = vm.C.rows() - cut.whole;
-  mark_boundary(vm, 3);
+  mark_boundary(vm, 3, o.threads);
   return vm;
 }
 
@@ -506,7 +571,7 @@ VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const Vol
   vm.V = std::move(d.V);
   vm.C = std::move(d.C);
   out.unprojected = d.unprojected;
-  mark_boundary(vm, 4);
+  mark_boundary(vm, 4, o.threads);
   for (long e = 0; e < vm.C.rows(); ++e) {
     bool layer = false;
     for (int j = 0; j < 8; ++j)
@@ -522,13 +587,17 @@ VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const Vol
 }
 
 // F = 0 as a surface to slide boundary nodes on: outward normals, and the seed's gradient walk
-// (steps of h / 4) back onto it.
-SlidingSurface implicit_surface(const ImplicitFunction& f, double h) {
+// (steps of h / 4) back onto it, both on `threads` threads.
+SlidingSurface implicit_surface(const ImplicitFunction& f, double h, int threads) {
   SlidingSurface s;
-  s.normals = [f, h](const Eigen::MatrixXd& P) { return outward_directions(f, P, 1e-3 * h); };
-  s.project = [f, h](Eigen::MatrixXd& P) {
+  s.normals = [f, h, threads](const Eigen::MatrixXd& P) {
+    return outward_directions(f, P, 1e-3 * h, threads);
+  };
+  s.project = [f, h, threads](Eigen::MatrixXd& P) {
     std::vector<char> ok;
-    project_by_gradient_walk(f, P, Eigen::VectorXd::Constant(P.rows(), h / 4), 100, {}, &ok);
+    RootOptions ro;
+    ro.threads = threads;
+    project_by_gradient_walk(f, P, Eigen::VectorXd::Constant(P.rows(), h / 4), 100, ro, &ok);
     return ok;
   };
   return s;
@@ -537,16 +606,19 @@ SlidingSurface implicit_surface(const ImplicitFunction& f, double h) {
 // The nodes of the poor elements (a corner scaled Jacobian <= tau; tau = 0: inverted) and of their
 // neighbours (sharing a node); `poor` is set to their number.
 std::vector<char> near_poor(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, double tau,
-                            long& poor) {
+                            int threads, long& poor) {
   const Eigen::MatrixXi T = corner_table(8);
-  std::vector<char> bad(size_t(V.rows()), 0), near(size_t(V.rows()), 0);
-  poor = 0;
-  for (long e = 0; e < C.rows(); ++e) {
+  const std::vector<char> poor_element = element_flags(C.rows(), threads, [&](long e) {
     Eigen::Vector3d p[8];
     for (int j = 0; j < 8; ++j)
       p[j] = V.row(C(e, j)).transpose();
     const detail::CornerJacobian cj = detail::corner_scaled_jacobian(p, T);
-    if (!cj.inverted && cj.min_scaled > tau)
+    return cj.inverted || !(cj.min_scaled > tau);
+  });
+  std::vector<char> bad(size_t(V.rows()), 0), near(size_t(V.rows()), 0);
+  poor = 0;
+  for (long e = 0; e < C.rows(); ++e) {
+    if (!poor_element[size_t(e)])
       continue;
     ++poor;
     for (long j = 0; j < C.cols(); ++j)
@@ -580,7 +652,7 @@ long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_al
   long poor = 0, best = -1;
   int stalled = 0;
   for (int round = 0; round < kRounds; ++round) {
-    std::vector<char> fixed = near_poor(C, V, tau, poor);
+    std::vector<char> fixed = near_poor(C, V, tau, threads, poor);
     if (poor == 0 || (best >= 0 && poor >= best && ++stalled >= kStall))
       break;
     best = best < 0 ? poor : std::min(best, poor);
@@ -589,12 +661,12 @@ long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_al
     VolumeSmoothingOptions so;
     so.sweeps = 4;
     so.threads = threads;
-    so.t = kSharpness / corner_alphas(V, C).cwiseAbs().mean();
+    so.t = kSharpness / corner_alphas(V, C, threads).cwiseAbs().mean();
     smooth_volume(V, C, fixed, so);
     if (surface != nullptr)
-      slide_boundary_nodes(V, C, slides, *surface, so.t);
+      slide_boundary_nodes(V, C, slides, *surface, so.t, kSlideFlat, threads);
   }
-  near_poor(C, V, tau, poor);
+  near_poor(C, V, tau, threads, poor);
   return poor;
 }
 
@@ -609,7 +681,7 @@ constexpr double kPoorPillow = 0.1;
 // kPoorPillow. Returns the elements still inverted after the first.
 long untangle_pillows(const ImplicitFunction& f, double h, const std::vector<char>& missed,
                       VolumeMesh& vm, int threads) {
-  const SlidingSurface surface = implicit_surface(f, h);
+  const SlidingSurface surface = implicit_surface(f, h, threads);
   std::vector<char> slides(vm.boundary.size());
   for (size_t v = 0; v < slides.size(); ++v)
     slides[v] = vm.boundary[v] && !missed[v];
@@ -652,7 +724,7 @@ VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const V
   vm.V = std::move(p.V);
   vm.C = std::move(p.C);
   vm.boundary = p.boundary;
-  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C) : Eigen::MatrixXi(0, 4);
+  vm.B = vm.C.rows() > 0 ? boundary_facets(vm.C, o.threads) : Eigen::MatrixXi(0, 4);
   out.unprojected = std::count(p.missed.begin(), p.missed.end(), char(1));
   out.inner_cells = p.core;
   out.layer_elements = vm.C.rows() - p.core;
@@ -680,7 +752,7 @@ VolumeMesh default_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
                              const VolumeMeshOptions& o, VolumeMeshInfo& out) {
   VolumeMesh vm = pillow_mesh(f, g, o, out);
   out.boundary = VolumeBoundary::pillow;
-  const std::vector<char> flags = folded_elements(vm.V, vm.C);
+  const std::vector<char> flags = folded_elements(vm.V, vm.C, o.threads);
   const long folded = std::count(flags.begin(), flags.end(), char(1));
   if (folded == 0)
     return vm;
@@ -694,44 +766,38 @@ VolumeMesh default_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
 
 } // namespace
 
-Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C) {
+Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C, int threads) {
   if (C.cols() != 4 && C.cols() != 8)
     throw std::invalid_argument("boundary_facets: C must be #C by 4 or #C by 8");
-  const bool tets = C.cols() == 4;
-  const int faces = tets ? 4 : 6, per = tets ? 3 : 4;
-  struct Keyed {
-    std::array<int, 4> key;
-    long element;
-    int face;
-  };
-  std::vector<Keyed> all;
-  all.reserve(size_t(C.rows() * faces));
-  for (long e = 0; e < C.rows(); ++e)
-    for (int f = 0; f < faces; ++f) {
-      std::array<int, 4> key = {0, 0, 0, -1};
-      for (int j = 0; j < per; ++j)
-        key[size_t(j)] = C(e, tets ? kTetFace[f][j] : kHexFace[f][j]);
-      std::sort(key.begin(), key.begin() + per);
-      all.push_back({key, e, f});
+  const ElementFacets ef{C};
+  const long nf = C.rows() * ef.faces, nv = C.size() > 0 ? long(C.maxCoeff()) + 1 : 0;
+  // Facets bucketed by their smallest node, in id order (a counting sort): equal facets share a
+  // bucket, and the buckets are matched independently.
+  std::vector<long> start(size_t(nv + 1), 0);
+  for (long id = 0; id < nf; ++id)
+    ++start[size_t(ef.smallest(id) + 1)];
+  for (long v = 0; v < nv; ++v)
+    start[size_t(v + 1)] += start[size_t(v)];
+  std::vector<long> at(static_cast<size_t>(nf)), fill(start.begin(), start.end() - 1);
+  for (long id = 0; id < nf; ++id)
+    at[size_t(fill[size_t(ef.smallest(id))]++)] = id;
+  std::vector<char> once(size_t(nf), 0);
+  for_batches(nv, threads, [&](long v0, long m) {
+    std::vector<std::pair<std::array<int, 4>, long>> bucket;
+    for (long v = v0; v < v0 + m; ++v) {
+      bucket.clear();
+      for (long k = start[size_t(v)]; k < start[size_t(v + 1)]; ++k)
+        bucket.emplace_back(ef.key(at[size_t(k)]), at[size_t(k)]);
+      ef.mark_once(bucket, once);
     }
-  std::sort(all.begin(), all.end(), [](const Keyed& a, const Keyed& b) {
-    return a.key != b.key ? a.key < b.key : a.element < b.element;
   });
-  std::vector<std::pair<long, int>> once;
-  for (size_t s = 0; s < all.size();) {
-    size_t e = s;
-    while (e < all.size() && all[e].key == all[s].key)
-      ++e;
-    if (e - s == 1)
-      once.emplace_back(all[s].element, all[s].face);
-    s = e;
-  }
-  std::sort(once.begin(), once.end());
-  Eigen::MatrixXi B(long(once.size()), per);
-  for (size_t r = 0; r < once.size(); ++r)
-    for (int j = 0; j < per; ++j)
-      B(long(r), j) =
-          C(once[r].first, tets ? kTetFace[once[r].second][j] : kHexFace[once[r].second][j]);
+  Eigen::MatrixXi B(long(std::count(once.begin(), once.end(), char(1))), ef.per);
+  for (long id = 0, r = 0; id < nf; ++id)
+    if (once[size_t(id)]) {
+      for (int j = 0; j < ef.per; ++j)
+        B(r, j) = ef.corner(id, j);
+      ++r;
+    }
   return B;
 }
 

@@ -26,6 +26,15 @@ inline Vec3 row(const Eigen::MatrixXd& V, int i) {
   return {V(i, 0), V(i, 1), V(i, 2)};
 }
 
+// alpha_j of element e: ((p_a - p_j) x (p_b - p_j)) . (p_c - p_j), (a, b, c) row j of T.
+double corner_alpha(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, const Eigen::MatrixXi& T,
+                    long e, int j) {
+  const Vec3 p = row(V, C(e, j));
+  const Vec3 u = row(V, C(e, T(j, 0))) - p, v = row(V, C(e, T(j, 1))) - p,
+             w = row(V, C(e, T(j, 2))) - p;
+  return u.cross(v).dot(w);
+}
+
 // A corner term that depends on a node: element, local corner j, and which of (p_j, p_a, p_b,
 // p_c) the node is.
 struct Involvement {
@@ -164,19 +173,31 @@ struct EnergyCount {
   long inverted = 0;
 };
 
-EnergyCount energy(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, double t) {
-  const Eigen::MatrixXd A = corner_alphas(V, C);
-  EnergyCount r;
-  double sum = 0;
-  for (long e = 0; e < A.rows(); ++e) {
-    bool bad = false;
-    for (long j = 0; j < A.cols(); ++j) {
-      sum += std::exp(std::min(-t * A(e, j), 700.0));
-      bad = bad || !(A(e, j) > 0);
+// Elements per task of the loops over all elements; partial sums are added in task order, so the
+// result does not depend on the number of threads.
+constexpr long kElementChunk = 8192;
+
+EnergyCount energy(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, double t, int threads) {
+  const long tasks = (C.rows() + kElementChunk - 1) / kElementChunk;
+  std::vector<double> sum(size_t(tasks), 0);
+  std::vector<long> inverted(size_t(tasks), 0);
+  const Eigen::MatrixXi T = corner_table(int(C.cols()));
+  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
+    for (long e = task * kElementChunk; e < std::min(C.rows(), (task + 1) * kElementChunk); ++e) {
+      bool bad = false;
+      for (int j = 0; j < int(C.cols()); ++j) {
+        const double a = corner_alpha(V, C, T, e, j);
+        sum[size_t(task)] += std::exp(std::min(-t * a, 700.0));
+        bad = bad || !(a > 0);
+      }
+      inverted[size_t(task)] += bad;
     }
-    r.inverted += bad;
-  }
-  r.mean = A.size() > 0 ? sum / double(A.size()) : 0;
+  });
+  EnergyCount r;
+  double total = 0;
+  for (long task = 0; task < tasks; ++task)
+    total += sum[size_t(task)], r.inverted += inverted[size_t(task)];
+  r.mean = C.size() > 0 ? total / double(C.size()) : 0;
   return r;
 }
 
@@ -360,16 +381,15 @@ Eigen::MatrixXi corner_table(int corners_per_element) {
   return T;
 }
 
-Eigen::MatrixXd corner_alphas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C) {
+Eigen::MatrixXd corner_alphas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, int threads) {
   const Eigen::MatrixXi T = corner_table(int(C.cols()));
   Eigen::MatrixXd A(C.rows(), C.cols());
-  for (long e = 0; e < C.rows(); ++e)
-    for (int j = 0; j < int(C.cols()); ++j) {
-      const Vec3 p = row(V, C(e, j));
-      const Vec3 u = row(V, C(e, T(j, 0))) - p, v = row(V, C(e, T(j, 1))) - p,
-                 w = row(V, C(e, T(j, 2))) - p;
-      A(e, j) = u.cross(v).dot(w);
-    }
+  const long tasks = (C.rows() + kElementChunk - 1) / kElementChunk;
+  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
+    for (long e = task * kElementChunk; e < std::min(C.rows(), (task + 1) * kElementChunk); ++e)
+      for (int j = 0; j < int(C.cols()); ++j)
+        A(e, j) = corner_alpha(V, C, T, e, j);
+  });
   return A;
 }
 
@@ -389,10 +409,10 @@ VolumeSmoothingReport smooth_volume(Eigen::MatrixXd& V, const Eigen::MatrixXi& C
   if (C.rows() == 0)
     return rep;
   // t = 1 / mean alpha (digest §6.4 [A]); the mean of |alpha| if the mesh is inverted on average.
-  const Eigen::MatrixXd A = corner_alphas(V, C);
+  const Eigen::MatrixXd A = corner_alphas(V, C, o.threads);
   const double mean = A.mean() > 0 ? A.mean() : A.cwiseAbs().mean();
   rep.t = o.t > 0 ? o.t : mean > 0 ? 1 / mean : 1;
-  EnergyCount ec = energy(V, C, rep.t);
+  EnergyCount ec = energy(V, C, rep.t, o.threads);
   rep.energy.push_back(ec.mean);
   rep.inverted.push_back(ec.inverted);
   if (o.sweeps == 0)
@@ -432,7 +452,7 @@ VolumeSmoothingReport smooth_volume(Eigen::MatrixXd& V, const Eigen::MatrixXi& C
         moves += m;
     }
     rep.moves += moves;
-    ec = energy(V, C, rep.t);
+    ec = energy(V, C, rep.t, o.threads);
     rep.energy.push_back(ec.mean);
     rep.inverted.push_back(ec.inverted);
     std::fill(active.begin(), active.end(), 0);
@@ -451,13 +471,13 @@ VolumeSmoothingReport smooth_volume(Eigen::MatrixXd& V, const Eigen::MatrixXi& C
 
 long slide_boundary_nodes(Eigen::MatrixXd& V, const Eigen::MatrixXi& C,
                           const std::vector<char>& fixed, const SlidingSurface& surface, double t,
-                          double flat) {
+                          double flat, int threads) {
   if (!(t > 0) || !(flat >= 0) || long(fixed.size()) != V.rows())
     throw std::invalid_argument("slide_boundary_nodes: t > 0, flat >= 0, one flag per node");
   if (!surface.normals || !surface.project)
     throw std::invalid_argument("slide_boundary_nodes: the surface needs normals and project");
   const Eigen::MatrixXi T = corner_table(int(C.cols()));
-  const Eigen::MatrixXd A = corner_alphas(V, C);
+  const Eigen::MatrixXd A = corner_alphas(V, C, threads);
   const double limit = flat * A.cwiseAbs().mean();
   std::vector<char> candidate(size_t(V.rows()), 0);
   for (long e = 0; e < C.rows(); ++e)

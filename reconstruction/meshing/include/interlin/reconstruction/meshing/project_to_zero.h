@@ -79,7 +79,9 @@ long project_by_gradient_walk(const ImplicitFunction& f, Eigen::MatrixXd& P,
 
 // Unit outward directions -grad F / |grad F| at the points P (#P by 3): from f.gradient when
 // available, else by central differences with step h (seed 003 code: h/2 of the walk step).
-// Rows where the gradient vanishes or is not finite are zero.
-Eigen::MatrixXd outward_directions(const ImplicitFunction& f, const Eigen::MatrixXd& P, double h);
+// Rows where the gradient vanishes or is not finite are zero. Chunks of P on `threads` threads
+// (0: all cores; the result does not depend on it).
+Eigen::MatrixXd outward_directions(const ImplicitFunction& f, const Eigen::MatrixXd& P, double h,
+                                   int threads = 0);
 
 } // namespace interlin

@@ -176,8 +176,9 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o = {
                        VolumeMeshInfo* info = nullptr);
 
 // The facets used by exactly one element, oriented outward (counter-clockwise seen from outside).
-// Inputs:  C #C by 4 (positive tetrahedra) or #C by 8 (hexahedra, VTK order)
+// Inputs:  C #C by 4 (positive tetrahedra) or #C by 8 (hexahedra, VTK order), threads (0: all
+//          cores; the result does not depend on it)
 // Output:  #B by 3 or #B by 4, in order of the elements
-Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C);
+Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C, int threads = 0);
 
 } // namespace interlin

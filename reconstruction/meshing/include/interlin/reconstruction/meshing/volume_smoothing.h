@@ -34,9 +34,9 @@ struct VolumeSmoothingReport {
 // Output: corners_per_element by 3.
 Eigen::MatrixXi corner_table(int corners_per_element);
 
-// alpha_j of every corner of every element. Inputs: V #V by 3, C #C by 4 or #C by 8.
-// Output: #C by 4 or #C by 8.
-Eigen::MatrixXd corner_alphas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C);
+// alpha_j of every corner of every element. Inputs: V #V by 3, C #C by 4 or #C by 8, threads
+// (0: all cores). Output: #C by 4 or #C by 8.
+Eigen::MatrixXd corner_alphas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, int threads = 0);
 
 // Minimises sum_e sum_j exp(-t alpha_j(e)) over the free nodes, one node at a time (Gauss-Seidel
 // sweeps; nodes that share no element move at once, in colour classes, on `threads` threads;
@@ -66,12 +66,13 @@ struct SlidingSurface {
 // when the node's functional decreases. Run between interior sweeps: a boundary facet folded over
 // by the projection cannot be repaired by the interior nodes alone.
 // Inputs:  C, fixed (#V, the nodes on the surface), surface, t (> 0, as in smooth_volume),
-//          flat (>= 0)
+//          flat (>= 0), threads for the corners (0: all cores; the result does not depend on it)
 // In/out:  V
 // Output:  the number of boundary nodes moved
+inline constexpr double kSlideFlat = 0.05;
 long slide_boundary_nodes(Eigen::MatrixXd& V, const Eigen::MatrixXi& C,
                           const std::vector<char>& fixed, const SlidingSurface& surface, double t,
-                          double flat = 0.05);
+                          double flat = kSlideFlat, int threads = 0);
 
 // Seed 003's 2-D functional (13) on a surface mesh lying on `surface`: every facet corner p with
 // neighbours next, prev contributes exp(-t alpha), alpha = ((next - p) x (prev - p)) . n(p) (twice
