@@ -38,18 +38,12 @@ Eigen::VectorXd nearest_samples(const PiecewiseCurve& pc, const MatrixXd& P) {
     t.segment(j * kFootSamples, kFootSamples) =
         Eigen::VectorXd::LinSpaced(kFootSamples + 1, pc.breaks(j), pc.breaks(j + 1))
             .head(kFootSamples);
-  const auto in3d = [](const MatrixXd& X) {
-    Eigen::MatrixX3d Y = Eigen::MatrixX3d::Zero(X.rows(), 3);
-    Y.leftCols(std::min<Index>(3, X.cols())) = X.leftCols(std::min<Index>(3, X.cols()));
-    return Y;
-  };
-  const NeighbourIndex samples(in3d(evaluate(pc, t)));
-  const Eigen::MatrixX3d Q = in3d(P);
+  const NeighbourIndex samples(evaluate(pc, t));
   Eigen::VectorXd u(P.rows());
   std::vector<int> idx;
   std::vector<double> d2;
   for (Index i = 0; i < P.rows(); ++i) {
-    samples.knn(Q.row(i).transpose(), 1, idx, d2);
+    samples.knn(P.row(i).transpose(), 1, idx, d2);
     u(i) = t(idx.front());
   }
   return u;

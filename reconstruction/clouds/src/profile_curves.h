@@ -40,7 +40,7 @@ Eigen::VectorXd turning_weights(const BSplineCurve& c, const Eigen::VectorXd& t)
 // neighbour's foot), Newton steps on (C(u) - P) . C'(u) = 0, each kept only where it brings the
 // point closer to the curve (else that point's next step is at most half as long), until every
 // step is below 1e-10 of the period or after 20 steps; wrapped into the curve's periodic domain.
-// P #P by dim (dim <= 3), u #P.
+// P #P by 3, u #P.
 Eigen::VectorXd closest_parameters(const BSplineCurve& c, const Eigen::MatrixXd& P,
                                    Eigen::VectorXd u);
 

@@ -176,8 +176,8 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
   const long ne = long(E.size());
   Points3 A(ne, 3), B(ne, 3);
   Eigen::VectorXd FA(ne), FB(ne), lin(ne);
-  detail::parallel_for((ne + kBatch - 1) / kBatch, threads, [&](long task, int) {
-    for (long e = task * kBatch; e < std::min(ne, (task + 1) * kBatch); ++e) {
+  detail::parallel_chunks(ne, kBatch, threads, [&](long, long e0, long e1) {
+    for (long e = e0; e < e1; ++e) {
       A.row(e) = point(E[size_t(e)].first).transpose();
       B.row(e) = point(E[size_t(e)].second).transpose();
       FA(e) = S(E[size_t(e)].first), FB(e) = S(E[size_t(e)].second);
@@ -290,10 +290,9 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
   for (const auto& l : whole)
     out.whole += long(l.size());
   out.V.resize(long(used.size()), 3);
-  const long tasks = (long(used.size()) + kBatch - 1) / kBatch;
-  std::vector<long> warped_in(size_t(tasks), 0);
-  detail::parallel_for(tasks, threads, [&](long task, int) {
-    for (long r = task * kBatch; r < std::min(long(used.size()), (task + 1) * kBatch); ++r) {
+  std::vector<long> warped_in(size_t(detail::chunk_count(long(used.size()), kBatch)), 0);
+  detail::parallel_chunks(long(used.size()), kBatch, threads, [&](long task, long r0, long r1) {
+    for (long r = r0; r < r1; ++r) {
       const long id = used[size_t(r)], e = id - G;
       if (id < G) {
         out.V.row(r) = position(id).transpose();

@@ -137,12 +137,11 @@ Points3 directions(const ImplicitFunction& f, const Points3& X, const Eigen::Vec
 // how many it missed; the total missed. *moved, when given, is reset to all 0 first.
 template <class Search>
 long missed_over_chunks(long n, const RootOptions& o, std::vector<char>* moved, Search search) {
-  std::vector<long> missed(size_t((n + kChunk - 1) / kChunk), 0);
+  std::vector<long> missed(size_t(detail::chunk_count(n, kChunk)), 0);
   if (moved)
     moved->assign(size_t(n), 0);
-  detail::parallel_for(long(missed.size()), detail::resolve_threads(o.threads), [&](long c, int) {
-    const long r0 = c * kChunk;
-    missed[size_t(c)] = search(r0, std::min(n, r0 + kChunk) - r0);
+  detail::parallel_chunks(n, kChunk, o.threads, [&](long c, long r0, long r1) {
+    missed[size_t(c)] = search(r0, r1 - r0);
   });
   long total = 0;
   for (long x : missed)
@@ -193,9 +192,8 @@ Eigen::VectorXd roots_on_segments(const ImplicitFunction& f, const Points3& A, c
   if (!(o.tolerance > 0) || o.max_evaluations < 1)
     throw std::invalid_argument("roots_on_segments: tolerance must be > 0, max_evaluations >= 1");
   Eigen::VectorXd t(n);
-  const long chunks = (n + kChunk - 1) / kChunk;
-  detail::parallel_for(chunks, detail::resolve_threads(o.threads), [&](long c, int) {
-    roots_chunk(f, A, B, FA, FB, o, c * kChunk, std::min(n, (c + 1) * kChunk), t);
+  detail::parallel_chunks(n, kChunk, o.threads, [&](long, long r0, long r1) {
+    roots_chunk(f, A, B, FA, FB, o, r0, r1, t);
   });
   return t;
 }
@@ -309,12 +307,10 @@ Eigen::MatrixXd outward_directions(const ImplicitFunction& f, const Eigen::Matri
     throw std::invalid_argument("outward_directions: difference step must be > 0");
   const long n = P.rows();
   Eigen::MatrixXd D(n, 3);
-  detail::parallel_for(
-      (n + kChunk - 1) / kChunk, detail::resolve_threads(threads), [&](long c, int) {
-        const long r0 = c * kChunk, m = std::min(n, r0 + kChunk) - r0;
-        D.middleRows(r0, m) =
-            directions(f, P.middleRows(r0, m), Eigen::VectorXd::Constant(m, 0.5 * h));
-      });
+  detail::parallel_chunks(n, kChunk, threads, [&](long, long r0, long r1) {
+    const long m = r1 - r0;
+    D.middleRows(r0, m) = directions(f, P.middleRows(r0, m), Eigen::VectorXd::Constant(m, 0.5 * h));
+  });
   return D;
 }
 

@@ -88,10 +88,9 @@ double boundary_area_of(const Eigen::MatrixXd& P, const Eigen::MatrixXi& T,
   std::sort(keys.begin(), keys.end());
   per_tetrahedron.assign(size_t(T.rows()), 0);
   constexpr long kChunk = 4096; // tetrahedra per task; partial sums added in task order
-  const long tasks = (T.rows() + kChunk - 1) / kChunk;
-  std::vector<double> part(size_t(tasks), 0);
-  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
-    for (long e = task * kChunk; e < std::min(T.rows(), (task + 1) * kChunk); ++e)
+  std::vector<double> part(size_t(detail::chunk_count(T.rows(), kChunk)), 0);
+  detail::parallel_chunks(T.rows(), kChunk, threads, [&](long task, long e0, long e1) {
+    for (long e = e0; e < e1; ++e)
       for (int skip = 0; skip < 4; ++skip) {
         std::array<int, 3> k;
         for (int j = 0, n = 0; j < 4; ++j)
@@ -220,12 +219,12 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
   const Eigen::MatrixXd& P = body.V;
   const Eigen::MatrixXi& T = body.C;
   constexpr long kChunk = 4096; // pieces per task; partial sums added in task order (deterministic)
-  const long tasks = (T.rows() + kChunk - 1) / kChunk;
+  const long tasks = detail::chunk_count(T.rows(), kChunk);
   std::vector<double> body_part(size_t(tasks), 0), lost_part(size_t(tasks), 0);
   std::vector<char> lost(size_t(T.rows()), 0);
   std::vector<long> cube_of(size_t(T.rows()));
-  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
-    for (long e = task * kChunk; e < std::min(T.rows(), (task + 1) * kChunk); ++e) {
+  detail::parallel_chunks(T.rows(), kChunk, threads, [&](long task, long e0, long e1) {
+    for (long e = e0; e < e1; ++e) {
       const Eigen::Vector3d a = P.row(T(e, 0)), b = P.row(T(e, 1)), c = P.row(T(e, 2)),
                             d = P.row(T(e, 3));
       const double volume = std::abs(det(a, b, c, d)) / 6;

@@ -66,22 +66,14 @@ struct ElementFacets {
   }
 };
 
-// body(r0, m) for the rows [r0, r0 + m) of [0, n) in batches of kBatch, on `threads` threads.
-template <class Body>
-void for_batches(long n, int threads, Body&& body) {
-  constexpr long kBatch = 4096; // points or elements per task
-  detail::parallel_for((n + kBatch - 1) / kBatch, detail::resolve_threads(threads),
-                       [&](long task, int) {
-                         const long r0 = task * kBatch;
-                         body(r0, std::min(n, r0 + kBatch) - r0);
-                       });
-}
+constexpr long kBatch = 4096; // points or elements per task
 
 // F at the rows of P, in batches on `threads` threads.
 Eigen::VectorXd values(const ImplicitFunction& f, const Points3& P, int threads) {
   Eigen::VectorXd F(P.rows());
-  for_batches(P.rows(), threads,
-              [&](long r0, long m) { f.value(P.middleRows(r0, m), F.segment(r0, m)); });
+  detail::parallel_chunks(P.rows(), kBatch, threads, [&](long, long r0, long r1) {
+    f.value(P.middleRows(r0, r1 - r0), F.segment(r0, r1 - r0));
+  });
   return F;
 }
 
@@ -109,7 +101,8 @@ void values_and_gradients(const ImplicitFunction& f, const Points3& P, double d,
                           Eigen::VectorXd& F, Points3& G) {
   F.resize(P.rows());
   G.resize(P.rows(), 3);
-  for_batches(P.rows(), threads, [&](long r0, long m) {
+  detail::parallel_chunks(P.rows(), kBatch, threads, [&](long, long r0, long r1) {
+    const long m = r1 - r0;
     value_and_gradient(f, P.middleRows(r0, m), d, F.segment(r0, m), G.middleRows(r0, m));
   });
 }
@@ -225,8 +218,8 @@ void split_prism(const int b[3], const int t[3], std::array<std::array<int, 4>, 
 template <class Predicate>
 std::vector<char> element_flags(long elements, int threads, Predicate&& is) {
   std::vector<char> flags(static_cast<size_t>(elements));
-  for_batches(elements, threads, [&](long e0, long m) {
-    for (long e = e0; e < e0 + m; ++e)
+  detail::parallel_chunks(elements, kBatch, threads, [&](long, long e0, long e1) {
+    for (long e = e0; e < e1; ++e)
       flags[size_t(e)] = is(e);
   });
   return flags;
@@ -782,9 +775,9 @@ Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C, int threads) {
   for (long id = 0; id < nf; ++id)
     at[size_t(fill[size_t(ef.smallest(id))]++)] = id;
   std::vector<char> once(size_t(nf), 0);
-  for_batches(nv, threads, [&](long v0, long m) {
+  detail::parallel_chunks(nv, kBatch, threads, [&](long, long v0, long v1) {
     std::vector<std::pair<std::array<int, 4>, long>> bucket;
-    for (long v = v0; v < v0 + m; ++v) {
+    for (long v = v0; v < v1; ++v) {
       bucket.clear();
       for (long k = start[size_t(v)]; k < start[size_t(v + 1)]; ++k)
         bucket.emplace_back(ef.key(at[size_t(k)]), at[size_t(k)]);

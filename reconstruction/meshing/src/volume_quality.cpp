@@ -171,10 +171,9 @@ VolumeQuality volume_quality(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C,
   std::vector<ElementQuality>& q = per_element ? *per_element : local;
   q.assign(size_t(C.rows()), ElementQuality{});
   constexpr long kChunk = 4096;
-  const long tasks = (C.rows() + kChunk - 1) / kChunk;
-  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long t, int) {
+  detail::parallel_chunks(C.rows(), kChunk, threads, [&](long, long e0, long e1) {
     Eigen::MatrixXd P(C.cols(), 3);
-    for (long e = t * kChunk; e < std::min<long>(C.rows(), (t + 1) * kChunk); ++e) {
+    for (long e = e0; e < e1; ++e) {
       for (long j = 0; j < C.cols(); ++j)
         P.row(j) = V.row(C(e, j));
       q[size_t(e)] = element_quality(P);

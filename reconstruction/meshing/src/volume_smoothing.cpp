@@ -178,12 +178,12 @@ struct EnergyCount {
 constexpr long kElementChunk = 8192;
 
 EnergyCount energy(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, double t, int threads) {
-  const long tasks = (C.rows() + kElementChunk - 1) / kElementChunk;
+  const long tasks = detail::chunk_count(C.rows(), kElementChunk);
   std::vector<double> sum(size_t(tasks), 0);
   std::vector<long> inverted(size_t(tasks), 0);
   const Eigen::MatrixXi T = corner_table(int(C.cols()));
-  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
-    for (long e = task * kElementChunk; e < std::min(C.rows(), (task + 1) * kElementChunk); ++e) {
+  detail::parallel_chunks(C.rows(), kElementChunk, threads, [&](long task, long e0, long e1) {
+    for (long e = e0; e < e1; ++e) {
       bool bad = false;
       for (int j = 0; j < int(C.cols()); ++j) {
         const double a = corner_alpha(V, C, T, e, j);
@@ -384,9 +384,8 @@ Eigen::MatrixXi corner_table(int corners_per_element) {
 Eigen::MatrixXd corner_alphas(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, int threads) {
   const Eigen::MatrixXi T = corner_table(int(C.cols()));
   Eigen::MatrixXd A(C.rows(), C.cols());
-  const long tasks = (C.rows() + kElementChunk - 1) / kElementChunk;
-  detail::parallel_for(tasks, detail::resolve_threads(threads), [&](long task, int) {
-    for (long e = task * kElementChunk; e < std::min(C.rows(), (task + 1) * kElementChunk); ++e)
+  detail::parallel_chunks(C.rows(), kElementChunk, threads, [&](long, long e0, long e1) {
+    for (long e = e0; e < e1; ++e)
       for (int j = 0; j < int(C.cols()); ++j)
         A(e, j) = corner_alpha(V, C, T, e, j);
   });
@@ -434,11 +433,11 @@ VolumeSmoothingReport smooth_volume(Eigen::MatrixXd& V, const Eigen::MatrixXi& C
     std::vector<char> moved_far(size_t(V.rows()), 0);
     long moves = 0;
     for (const std::vector<int>& cls : classes) {
-      const long n = long(cls.size()), tasks = (n + kChunk - 1) / kChunk;
-      std::vector<long> moved(size_t(tasks), 0);
-      detail::parallel_for(tasks, threads, [&](long task, int) {
+      const long n = long(cls.size());
+      std::vector<long> moved(size_t(detail::chunk_count(n, kChunk)), 0);
+      detail::parallel_chunks(n, kChunk, threads, [&](long task, long r0, long r1) {
         std::vector<Involvement> terms;
-        for (long r = task * kChunk; r < std::min(n, (task + 1) * kChunk); ++r) {
+        for (long r = r0; r < r1; ++r) {
           const int v = cls[size_t(r)];
           if (!active[size_t(v)])
             continue;

@@ -58,4 +58,21 @@ void parallel_for(long tasks, int threads, Body&& body) {
     std::rethrow_exception(error);
 }
 
+// The number of chunks of `chunk` rows that cover [0, n).
+inline long chunk_count(long n, long chunk) {
+  return (n + chunk - 1) / chunk;
+}
+
+// Calls body(task, r0, r1) for every chunk [r0, r1) = [task chunk, min(n, (task + 1) chunk)) of
+// [0, n), task in [0, chunk_count(n, chunk)), on up to `threads` workers (0: all cores). The
+// chunks do not depend on the thread count, so sums kept per task and added in task order are
+// the same on any number of threads.
+template <class Body>
+void parallel_chunks(long n, long chunk, int threads, Body&& body) {
+  parallel_for(chunk_count(n, chunk), resolve_threads(threads), [&](long task, int) {
+    const long r0 = task * chunk;
+    body(task, r0, std::min(n, r0 + chunk));
+  });
+}
+
 } // namespace interlin::detail
