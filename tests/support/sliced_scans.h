@@ -24,17 +24,19 @@ struct Scan {
   std::vector<double> t; // span fraction of each slice
 };
 
-// `slices` slices of `per` points (random positions around the profile), noise sigma in 3D.
-// Planar: planes x = 3 t; radial: cylinders r = 10 + 3 t about z, profile coordinates (r * angle,
-// z).
-inline Scan scan(bool radial, int slices, int per, double sigma, double thick, unsigned seed) {
+// Slices at span fractions `stations` (increasing, in [0, 1]) of `per` points each (random
+// positions around the profile), noise sigma in 3D. Planar: planes x = 3 t; radial: cylinders r =
+// 10 + 3 t about z, profile coordinates (r * angle, z).
+inline Scan scan(bool radial, const std::vector<double>& stations, int per, double sigma,
+                 double thick, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(0, 2 * M_PI);
   std::normal_distribution<double> G(0, sigma);
+  const int slices = int(stations.size());
   Scan s;
   s.P.resize(slices * per, 3);
   for (int k = 0; k < slices; ++k) {
-    const double t = double(k) / (slices - 1);
+    const double t = stations[size_t(k)];
     s.t.push_back(t);
     for (int i = 0; i < per; ++i) {
       const Eigen::Vector2d q = profile(U(rng), t, thick);
@@ -49,6 +51,14 @@ inline Scan scan(bool radial, int slices, int per, double sigma, double thick, u
     }
   }
   return s;
+}
+
+// `slices` evenly spaced slices (t = k / (slices - 1)).
+inline Scan scan(bool radial, int slices, int per, double sigma, double thick, unsigned seed) {
+  std::vector<double> t;
+  for (int k = 0; k < slices; ++k)
+    t.push_back(double(k) / (slices - 1));
+  return scan(radial, t, per, sigma, thick, seed);
 }
 
 } // namespace interlin::test

@@ -33,6 +33,11 @@ constexpr double kTwoSided = 0.5;
 // noise inside one slice has no valley at all at that bandwidth.
 constexpr double kValley = 0.1;
 constexpr int kBinsPerWidth = 4; // histogram bins per kernel width
+// Unevenly spaced slices: the gaps between close slices can rival the gaps inside the others, and
+// the gap cuts then merge the close ones into one slice of two peaks. A slice whose station spread
+// exceeds this many times the median slice's is split at the valleys of its density (kValley):
+// two slices 8 sigma apart merged have 4.1 times the spread of one.
+constexpr double kWideSlice = 2.5;
 
 struct Split {
   double score = 0; // slice spacing / spread (larger: thinner slices; 0: no split)
@@ -175,6 +180,56 @@ std::vector<double> density_cuts(const std::vector<std::pair<double, Index>>& s,
   return cuts;
 }
 
+// The parts between the cuts (indices into cuts.size() + 1 parts) whose station spread exceeds
+// kWideSlice times the median part's (at least 1e-9 of the stations' range); none when there are
+// fewer than 3 parts.
+std::vector<size_t> wide_parts(const std::vector<std::pair<double, Index>>& s,
+                               const std::vector<double>& cuts) {
+  std::vector<double> sum(cuts.size() + 1, 0), sq(cuts.size() + 1, 0), n(cuts.size() + 1, 0);
+  for (const auto& [station, row] : s) {
+    const size_t k = size_t(std::upper_bound(cuts.begin(), cuts.end(), station) - cuts.begin());
+    sum[k] += station, n[k] += 1;
+  }
+  for (const auto& [station, row] : s) {
+    const size_t k = size_t(std::upper_bound(cuts.begin(), cuts.end(), station) - cuts.begin());
+    sq[k] += std::pow(station - sum[k] / n[k], 2);
+  }
+  std::vector<double> spread(n.size());
+  for (size_t k = 0; k < n.size(); ++k)
+    spread[k] = n[k] > 0 ? std::sqrt(sq[k] / n[k]) : 0;
+  std::vector<size_t> wide;
+  if (spread.size() < 3)
+    return wide;
+  std::vector<double> sorted = spread;
+  std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+  // spreads of round-off (exact slices) count as 1e-9 of the stations' range
+  const double floor = 1e-9 * (s.back().first - s.front().first);
+  for (size_t k = 0; k < spread.size(); ++k)
+    if (spread[k] > kWideSlice * std::max(sorted[sorted.size() / 2], floor))
+      wide.push_back(k);
+  return wide;
+}
+
+// The cuts with the wide parts split at the valleys of their own density (density_cuts, kernel
+// width `width`).
+std::vector<double> split_parts(const std::vector<std::pair<double, Index>>& s,
+                                std::vector<double> cuts, const std::vector<size_t>& wide,
+                                double width) {
+  const std::vector<double> given = cuts;
+  for (size_t k : wide) {
+    std::vector<std::pair<double, Index>> part;
+    for (const auto& e : s)
+      if (size_t(std::upper_bound(given.begin(), given.end(), e.first) - given.begin()) == k)
+        part.push_back(e);
+    if (part.size() >= 2 * size_t(kMinSlicePoints)) {
+      const std::vector<double> inner = density_cuts(part, width);
+      cuts.insert(cuts.end(), inner.begin(), inner.end());
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  return cuts;
+}
+
 // The noise of the stations along the candidate's axis: for each of up to kWidthSamples points,
 // the median |s_i - s_j| over its nearest neighbours j (in 3D: the same slice when the slices are
 // farther apart than the points along them), the median of that over the points, divided by
@@ -220,7 +275,10 @@ Split split_stations(const Eigen::MatrixX3d& P, const SliceFamily& candidate,
   for (Index i = 0; i < n; ++i)
     s[size_t(i)] = {candidate.station(P.row(i).transpose()), i};
   std::sort(s.begin(), s.end());
-  Split out = family_from_cuts(P, candidate, s, gap_cuts(s));
+  std::vector<double> cuts = gap_cuts(s);
+  if (const std::vector<size_t> wide = wide_parts(s, cuts); !wide.empty())
+    cuts = split_parts(s, cuts, wide, station_noise(P, candidate, neighbours.get()));
+  Split out = family_from_cuts(P, candidate, s, cuts);
   if (out.score == 0)
     out = family_from_cuts(P, candidate, s,
                            density_cuts(s, station_noise(P, candidate, neighbours.get())));

@@ -29,7 +29,10 @@ struct SliceFamily {
 
 // Finds the family: for each candidate axis (planar: the coordinate axes and the points'
 // principal axes; radial: the coordinate axes), the sorted stations split where a gap is at
-// least kSliceGapRatio times every gap kept inside the slices; the family is accepted when it has
+// least kSliceGapRatio times every gap kept inside the slices, then a slice whose spread exceeds
+// 2.5 times the median slice's (two close slices of an unevenly spaced scan merged) split at the
+// valleys of its density (else, when the gaps find no family, all stations split at the valleys
+// of their density, for noisy slices); the family is accepted when it has
 // >= 3 slices of >= kMinSlicePoints points, each slice's station spread is at most a quarter of
 // the slice spacing, and each slice extends across at least 10 times its spread (a profile, not
 // a block). The accepted candidate with the thinnest slices (spacing / spread) wins; a planar
