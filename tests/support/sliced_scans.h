@@ -19,6 +19,20 @@ inline Eigen::Vector2d profile(double theta, double t, double thick) {
   return Eigen::Rotation2Dd(0.6 * t) * q;
 }
 
+// Other laws along the span for the same profile family: law 0 is `profile`; law 1 twists
+// 1.5 t rad, tapers as 1 - 0.6 t + 0.3 t^2 and halves the camber towards the tip; law 2 sweeps the
+// profile along its chord by 0.4 t^2, twists 0.8 t^3 rad and scales by 0.7 + 0.3 cos 2t.
+inline Eigen::Vector2d profile(int law, double theta, double t, double thick) {
+  if (law == 0)
+    return profile(theta, t, thick);
+  const double s = std::sin(theta);
+  const double a = law == 1 ? 1 - 0.6 * t + 0.3 * t * t : 0.7 + 0.3 * std::cos(2 * t);
+  const double camber = law == 1 ? 0.25 * (1 - 0.5 * t) : 0.15;
+  const double sweep = law == 1 ? 0 : 0.4 * t * t, twist = law == 1 ? 1.5 * t : 0.8 * t * t * t;
+  const Eigen::Vector2d q(a * std::cos(theta) + sweep, a * (thick * s + camber * s * s));
+  return Eigen::Rotation2Dd(twist) * q;
+}
+
 struct Scan {
   Eigen::MatrixX3d P;
   std::vector<double> t; // span fraction of each slice
@@ -28,7 +42,7 @@ struct Scan {
 // positions around the profile), noise sigma in 3D. Planar: planes x = 3 t; radial: cylinders r =
 // 10 + 3 t about z, profile coordinates (r * angle, z).
 inline Scan scan(bool radial, const std::vector<double>& stations, int per, double sigma,
-                 double thick, unsigned seed) {
+                 double thick, unsigned seed, int law = 0) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(0, 2 * M_PI);
   std::normal_distribution<double> G(0, sigma);
@@ -39,7 +53,7 @@ inline Scan scan(bool radial, const std::vector<double>& stations, int per, doub
     const double t = stations[size_t(k)];
     s.t.push_back(t);
     for (int i = 0; i < per; ++i) {
-      const Eigen::Vector2d q = profile(U(rng), t, thick);
+      const Eigen::Vector2d q = profile(law, U(rng), t, thick);
       Eigen::Vector3d p;
       if (radial) {
         const double r = 10 + 3 * t;
