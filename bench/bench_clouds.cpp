@@ -33,6 +33,8 @@
 // truth and the point-set Chamfer of the points and of their projections onto the truth.)
 // (--no-thin-walls: every case's normals prepared with CloudPrepOptions::thin_walls off, the
 // orientation before session 9.)
+// (Cases uav-oriented, car-oriented, impeller-oriented: the model clouds with every estimated
+// normal turned to the true side, an oracle for the orientation; name them in --cases.)
 // (--exact-sigmas: one more case blade-exact-sigma-S per sigma S (cm): the blade with the true
 // normals at that noise, for a noise family; name them in --cases.)
 
@@ -606,6 +608,9 @@ int main(int argc, char** argv) {
       {"radial-noisy", [] { return blade_slices(true, 30, 500, 0.02, 13); }},
       {"impeller", [&] { return model_cloud("impeller", points, 0, 7); }},
       {"uav", [&] { return model_cloud("uav", points, 0, 8); }},
+      {"uav-oriented", [&] { return model_cloud("uav", points, 0, 8, true); }},
+      {"car-oriented", [&] { return model_cloud("car", points, 0, 9, true); }},
+      {"impeller-oriented", [&] { return model_cloud("impeller", points, 0, 7, true); }},
       {"car", [&] { return model_cloud("car", points, 0, 9); }},
       {"valve", [&] { return model_cloud("valve", points, 0, 10); }},
       {"naca0011_plate", [&] { return model_cloud("naca0011_plate", points, 0, 11); }},

@@ -281,10 +281,10 @@ CloudCase blade_slices(bool radial, int slices, int per_slice, double sigma, uns
   return c;
 }
 
-CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned seed) {
+CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned seed, bool orient) {
   const ImplicitFunction F = load_model(std::string(INTERLIN_DATA_DIR) + "/models/" + name + ".rf");
   CloudCase c;
-  c.name = name + (sigma > 0 ? " noisy" : "");
+  c.name = name + (sigma > 0 ? " noisy" : "") + (orient ? " oriented" : "");
   ImplicitMeshOptions o;
   o.resolution = 512;
   implicit_mesh(F, o, c.truth.V, c.truth.F);
@@ -321,7 +321,7 @@ CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned see
   add_noise(s, c.noise, seed + 3);
   c.description = std::to_string(n) + " points on the zero set of data/models/" + name +
                   ".rf, sigma " + std::to_string(sigma) + " x diagonal";
-  c.cloud = prepared(c.name, s, c.inward);
+  c.cloud = prepared(c.name, s, c.inward, orient);
   return c;
 }
 

@@ -57,8 +57,11 @@ CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed,
 CloudCase blade_slices(bool radial, int slices, int per_slice, double sigma, unsigned seed);
 
 // n points on the zero set of an R-function model (data/models/NAME.rf) with its normalised
-// gradient as normal, noise sigma relative to the bounding-box diagonal.
-CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned seed);
+// gradient as normal, noise sigma relative to the bounding-box diagonal; the normals estimated
+// (prepare_cloud) and, with `orient` (an oracle for the orientation), each turned to the true
+// normal's side.
+CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned seed,
+                      bool orient = false);
 
 // Whether the cases' prepare_cloud runs with CloudPrepOptions::thin_walls (on by default, as in
 // prepare_cloud; bench_clouds --no-thin-walls turns it off).
