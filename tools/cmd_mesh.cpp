@@ -99,7 +99,7 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
                          layer); hexahedra: pillow (default, dual where pillows stay folded,
                          which --boundary pillow refuses instead), dual or projected
   --lattice L            tetrahedra, cut: bcc (default) or kuhn (the grid's cubes cut into 6
-                         Kuhn tetrahedra, nodes within 0.2 of an edge moved: half the
+                         Kuhn tetrahedra, nodes within 0.2 of an edge moved: 0.55-0.8x the
                          elements, poorer angles)
   --margin M             projected layer: nodes nearer to F = 0 than M cells are outside
                          (default 0.35)

@@ -218,7 +218,7 @@ void bind_volume_meshes(py::module_& m) {
 (V (N, 3), C (E, 4) tetrahedra or (E, 8) hexahedra (VTK order) int32, B (K, 3 or 4) boundary
 facets, boundary (N,) bool, info dict). elements "tet" or "hex"; boundary (tetrahedra) "cut" (the
 lattice's tetrahedra clipped at F = 0; lattice "bcc", the body-centred cubic lattice of
-isosurface stuffing, or "kuhn", the grid's cubes in 6 tetrahedra: half the elements, poorer
+isosurface stuffing, or "kuhn", the grid's cubes in 6 tetrahedra: 0.55-0.8x the elements, poorer
 angles) or "projected" (the seed's layer); interior_sweeps -1: 8, none for "bcc" (the corner
 functional distorts its lattice); hexahedra "cut" (the
 default: "pillow", or "dual" where pillows stay folded; info["boundary"] says which and
