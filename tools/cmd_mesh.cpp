@@ -79,9 +79,11 @@ Examples:
 
 Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element analysis):
   outputs .vtu (ParaView), .msh (Gmsh 4.1), .inp (Abaqus/CalculiX), plus .stl .obj .ply .off
-  (the boundary surface) and .png. Tetrahedra: the grid's cubes cut into 6 tetrahedra, those
-  crossing F = 0 clipped at the roots of F on their edges (grid nodes within 0.2 of an edge
-  from F = 0 moved onto it); no element is inverted, walls from 1.5 cells thick are kept.
+  (the boundary surface) and .png. Tetrahedra: the BCC lattice (grid nodes and cube centres,
+  12 tetrahedra per cube with dihedral angles of 60 and 90 degrees; Labelle & Shewchuk's
+  isosurface stuffing), those crossing F = 0 clipped at the roots of F on their edges (lattice
+  nodes within 0.25 (axis edges) or 0.41 (centre edges) of an edge from F = 0 moved onto it);
+  no element is inverted, walls from 1.5 cells thick are kept.
   Hexahedra: one per inside grid node (dual to the grid) as a core inside the body, and one
   pillow hexahedron from each of its boundary faces out to F = 0: the boundary nodes on
   F = 0 but the few held short of it where a pillow would fold, walls down to a node layer
@@ -91,14 +93,18 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
   count as outside) are kept and each boundary facet and its projection onto F = 0 make one
   hexahedron or a prism of 3 tetrahedra (walls thinner than about 4 cells are lost). Then
   the interior nodes minimise seed 003's corner functional (15), never folding an element
-  further.
+  further (not on the BCC lattice, whose angles it would only spoil).
   --volume tet|hex       tetrahedra or hexahedra
-  --boundary B           tetrahedra: cut (the clipped grid, default) or projected (seed 003's
+  --boundary B           tetrahedra: cut (the clipped lattice, default) or projected (seed 003's
                          layer); hexahedra: pillow (default, dual where pillows stay folded,
                          which --boundary pillow refuses instead), dual or projected
+  --lattice L            tetrahedra, cut: bcc (default) or kuhn (the grid's cubes cut into 6
+                         Kuhn tetrahedra, nodes within 0.2 of an edge moved: 0.55-0.8x the
+                         elements, poorer angles)
   --margin M             projected layer: nodes nearer to F = 0 than M cells are outside
                          (default 0.35)
-  --sweeps K             sweeps of the interior functional (default 8; seed 003: 8-10)
+  --sweeps K             sweeps of the interior functional (default 8, none for BCC
+                         tetrahedra, which it distorts; seed 003: 8-10)
   --seed-rule            seed 003's own classification (projected layer, margin 0; F > 0
                          for tetrahedra, F >= 0 for hexahedra): reproduces its published
                          counts
@@ -113,8 +119,8 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
   --adapt-delta D        indicator threshold in [0, 1) (default 0.2)
   --adapt-var NAME       the nodal quantity: variable NAME of the .rf model (a stress estimate,
                          a distance to a load, ...); default the body function F itself
-  --max-elements N       most elements the grid may hold, 6 tetrahedra or 1 hexahedron
-                         per cell (default 25000000 tetrahedra, 5000000 hexahedra:
+  --max-elements N       most elements the grid may hold, 12 tetrahedra (6 with --lattice
+                         kuhn) or 1 hexahedron per cell (default 30000000 tetrahedra, 5000000 hexahedra:
                          about 4 GB of memory when the body fills the grid)
   The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
   inverted elements (an error unless 0), the boundary nodes on F = 0 (all but those held
@@ -147,8 +153,8 @@ double grid_node_estimate(const Eigen::AlignedBox3d& box, const ImplicitMeshOpti
 }
 
 // Grid limits are usage errors (the options asked for them), checked before any work: the grid's
-// nodes (time) and with --volume the elements its cells could hold (memory: 6 tetrahedra or 1
-// hexahedron per cell, and there are fewer cells than nodes).
+// nodes (time) and with --volume the elements its cells could hold (memory: 12 tetrahedra on the
+// BCC lattice, 6 on Kuhn's, or 1 hexahedron per cell, and there are fewer cells than nodes).
 void check_grid_limits(const ParsedArgs& a, const Eigen::AlignedBox3d& box,
                        const ImplicitMeshOptions& o) {
   const std::string asked = a.has("cell")         ? "--cell " + a.get("cell")
@@ -163,7 +169,7 @@ void check_grid_limits(const ParsedArgs& a, const Eigen::AlignedBox3d& box,
   if (!a.has("volume"))
     return;
   const bool hex = a.get("volume") == "hex";
-  const double elements = n * (hex ? 1 : 6);
+  const double elements = n * (hex ? 1 : a.get("lattice", "bcc") == "kuhn" ? 6 : 12);
   const long long max_elements =
       limit_option(a, "max-elements", hex ? limits::volume_hexahedra : limits::volume_tetrahedra);
   if (elements > double(max_elements))
@@ -212,7 +218,7 @@ std::map<std::string, Kind> checked_outputs(const ParsedArgs& a,
     throw UsageError("nothing to do: give -o FILE");
   const bool volume = a.has("volume");
   for (const char* only : {"margin", "boundary", "sweeps", "seed-rule", "max-elements", "adapt",
-                           "adapt-delta", "adapt-var"})
+                           "adapt-delta", "adapt-var", "lattice"})
     if (!volume && a.has(only))
       throw UsageError(std::string("--") + only + " needs --volume tet|hex");
   if (volume && (a.has("subboxes") || a.has("no-project") || a.has("flip")))

@@ -52,7 +52,8 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
   o.cell = r.cell;
   o.threads = r.threads;
   o.surface_sweeps = r.smooth;
-  o.interior_sweeps = parse_int("sweeps", a.get("sweeps", "8"), 0, 1000);
+  if (a.has("sweeps"))
+    o.interior_sweeps = parse_int("sweeps", a.get("sweeps"), 0, 1000);
   if (a.has("seed-rule") && a.has("margin"))
     throw UsageError("--seed-rule and --margin exclude each other");
   if (a.has("margin")) {
@@ -66,6 +67,11 @@ VolumeMeshOptions volume_options_of(const ParsedArgs& a, const VolumeRequest& r)
         hex ? parse_choice("boundary", a.get("boundary"), {"projected", "dual", "pillow"})
             : parse_choice("boundary", a.get("boundary"), {"cut", "projected"});
     o.boundary = boundary_named(b);
+  }
+  if (a.has("lattice")) {
+    if (o.elements == VolumeElements::hexahedra || o.boundary != VolumeBoundary::cut)
+      throw UsageError("--lattice applies to --volume tet with --boundary cut");
+    o.lattice = lattice_named(parse_choice("lattice", a.get("lattice"), {"bcc", "kuhn"}));
   }
   if (a.has("margin") &&
       (o.boundary == VolumeBoundary::dual || o.boundary == VolumeBoundary::pillow))
@@ -135,7 +141,7 @@ std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunctio
       adapt_tetrahedra(m.V, m.C, m.boundary, values, q.delta, q.passes, f);
   m.B = boundary_facets(m.C, o.threads);
   VolumeSmoothingOptions so;
-  so.sweeps = o.interior_sweeps;
+  so.sweeps = interior_sweeps_of(o);
   so.threads = o.threads;
   if (so.sweeps > 0)
     smooth_volume(m.V, m.C, m.boundary, so);
@@ -159,6 +165,8 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
             << (info.inner_cells + info.layer_elements != m.C.rows() ? " before refinement" : "")
             << "), " << m.V.rows() << " nodes, " << m.B.rows()
             << (tets ? " boundary triangles" : " boundary quadrilaterals") << "\n";
+  if (tets && info.boundary == VolumeBoundary::cut)
+    std::cout << "  lattice      " << lattice_name(o.lattice) << "\n";
   if (!tets) {
     std::cout << "  layer        " << boundary_name(info.boundary);
     if (info.folded_pillows > 0)
@@ -213,10 +221,11 @@ bool volume_output_ok(const std::string& path) {
 }
 
 std::vector<OptionSpec> volume_options() {
-  return {
-      {"volume", 0, true, false}, {"margin", 0, true, false},      {"boundary", 0, true, false},
-      {"sweeps", 0, true, false}, {"seed-rule", 0, false, false},  {"max-elements", 0, true, false},
-      {"adapt", 0, true, false},  {"adapt-delta", 0, true, false}, {"adapt-var", 0, true, false}};
+  return {{"volume", 0, true, false},     {"margin", 0, true, false},
+          {"boundary", 0, true, false},   {"sweeps", 0, true, false},
+          {"seed-rule", 0, false, false}, {"max-elements", 0, true, false},
+          {"adapt", 0, true, false},      {"adapt-delta", 0, true, false},
+          {"adapt-var", 0, true, false},  {"lattice", 0, true, false}};
 }
 
 void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeRequest& r,

@@ -100,6 +100,25 @@ def test_adaptive_refinement_is_conforming_and_follows_the_field():
         interlin.adapt_tetrahedra(V, C, boundary, failing, 0.3, 1)
 
 
+def test_mesh_volume_lattice_choice():
+    # Tetrahedra cut from the BCC lattice (the default) or the grid's Kuhn tetrahedra: both valid
+    # with the boundary on F = 0; BCC's dihedral angles within the isosurface-stuffing bound
+    # [10.7, 164.8] degrees on a resolved ball, Kuhn's not (measured 22.6 .. 132.2 against
+    # 6.4 .. 155.2 at 12 cells).
+    ball = rf.compile(rf.sphere(rf.x, rf.y, rf.z, 1.0), [[-1.2] * 3, [1.2] * 3])
+    q = {}
+    for lattice in ("bcc", "kuhn"):
+        V, C, B, on, info = interlin.mesh_volume(ball, "tet", resolution=12, threads=1,
+                                                 lattice=lattice)
+        q[lattice] = interlin.volume_quality(V, C, threads=1)
+        assert q[lattice]["inverted"] == 0
+        assert np.max(np.abs(np.linalg.norm(V[on], axis=1) - 1)) < 1e-9
+    assert 10.7 < q["bcc"]["min_dihedral_deg"] and q["bcc"]["max_dihedral_deg"] < 164.8
+    assert q["kuhn"]["min_dihedral_deg"] < 10.7
+    with pytest.raises(ValueError, match="lattice: 'fcc' is not one of"):
+        interlin.mesh_volume(ball, "tet", lattice="fcc")
+
+
 def test_mesh_volume_boundary_choice_and_held_nodes():
     ball = rf.compile(rf.sphere(rf.x, rf.y, rf.z, 1.0), [[-1.2] * 3, [1.2] * 3])
     for boundary in ("cut", "projected"):

@@ -63,7 +63,11 @@ TEST_CASE("CLI mesh --volume: usage errors", "[cli][mesh][volume]") {
            "mesh " + m + " -o x.msh --volume hex --adapt 1",                 // tetrahedra only
            "mesh " + m + " -o x.msh --volume tet --adapt 1 --adapt-delta 1", // range
            "mesh " + m + " -o x.msh --volume tet --adapt-delta 0.1",         // needs --adapt
-           "mesh " + m + " -o x.stl --adapt 1"}) {                           // needs --volume
+           "mesh " + m + " -o x.msh --volume tet --lattice fcc",             // unknown lattice
+           "mesh " + m + " -o x.msh --volume hex --lattice bcc",             // tetrahedra only
+           "mesh " + m + " -o x.msh --volume tet --boundary projected --lattice kuhn", // cut only
+           "mesh " + m + " -o x.stl --lattice bcc", // needs --volume
+           "mesh " + m + " -o x.stl --adapt 1"}) {  // needs --volume
     const Run r = run(bad + " -q");
     INFO(bad << " -> " << r.err);
     CHECK(r.status == 2);
@@ -208,8 +212,9 @@ TEST_CASE("CLI mesh --volume: a body that reaches the box is warned about as for
           "[cli][mesh][volume]") {
   // The ball cut by --box at z = 0: the surface mesh and both volume meshes name the same grid
   // nodes (the same grid and the same check), once; -q keeps the summary and drops the warning.
-  // Hexahedra with the projected layer: the dual and pillowed ones (the default) pad the grid by
-  // a cell, so they name the padded grid's outer nodes.
+  // Kuhn tetrahedra and hexahedra with the projected layer: BCC tetrahedra (the default) and the
+  // dual and pillowed hexahedra pad the grid by a cell, so they name the padded grid's outer
+  // nodes.
   TempDir d("climeshvol");
   write_file(d / "ball.rf", kBall);
   const std::string base =
@@ -221,7 +226,7 @@ TEST_CASE("CLI mesh --volume: a body that reaches the box is warned about as for
   const std::string warning = surface.err.substr(at, surface.err.find('\n', at) + 1 - at);
   CHECK_THAT(warning, Catch::EndsWith(" grid nodes; the mesh is cut by the box there\n"));
   for (const std::string kind : {"tet", "hex"}) {
-    const std::string layer = kind == "hex" ? " --boundary projected" : "";
+    const std::string layer = kind == "hex" ? " --boundary projected" : " --lattice kuhn";
     const Run r = run(base + " -o " + (d / "b.vtu") + " --volume " + kind + layer);
     INFO(kind << ": " << r.err);
     REQUIRE(r.status == 0);
@@ -231,6 +236,9 @@ TEST_CASE("CLI mesh --volume: a body that reaches the box is warned about as for
     CHECK(quiet.err.empty());
     CHECK_THAT(quiet.out, Catch::Contains("inverted 0"));
   }
+  const Run bcc = run(base + " -o " + (d / "b.vtu") + " --volume tet");
+  CHECK(bcc.status == 0);
+  CHECK_THAT(bcc.err, Catch::Contains("warning: the body reaches the box at "));
   // In the model's own box the ball reaches nothing: no warning.
   const Run inside =
       run("mesh " + (d / "ball.rf") + " --resolution 12 --volume tet -o " + (d / "b.vtu"));

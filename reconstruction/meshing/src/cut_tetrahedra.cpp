@@ -18,7 +18,7 @@ namespace interlin {
 
 namespace {
 
-using Tet = std::array<long, 4>;    // extended ids: grid node n, or G + e for the cut on edge e
+using Tet = std::array<long, 4>;    // extended ids: lattice node n, or N + e for the cut on edge e
 using Edge = std::pair<long, long>; // (inside node, outside node)
 
 // Node class: 1 inside, 0 on the surface, -1 outside.
@@ -72,6 +72,89 @@ void clip(const int n[4], const int c[4], Cut&& cut, std::vector<Tet>& out) {
 }
 
 constexpr long kBatch = 8192; // edges or nodes per task
+
+// The lattice: its nodes (grid nodes, then BCC's cube centres), background tetrahedra by cube
+// layer, and the node layers that keep the cut edges sorted.
+struct Background {
+  const RegularGrid& g;
+  const RegularGrid c; // the cube centres
+  const bool bcc;
+  const long nx, ny, cx, cy, cz, G, N; // G grid nodes, N lattice nodes
+
+  Background(const RegularGrid& grid, Lattice l)
+      : g(grid), c(cube_centres(grid)), bcc(l == Lattice::bcc), nx(g.nodes(0)), ny(g.nodes(1)),
+        cx(nx - 1), cy(ny - 1), cz(g.nodes(2) - 1), G(g.size()), N(bcc ? G + c.size() : G) {}
+
+  Eigen::Vector3d point(long n) const {
+    if (n < G)
+      return g.point(n % nx, (n / nx) % ny, n / (nx * ny));
+    n -= G;
+    return c.point(n % cx, (n / cx) % cy, n / (cx * cy));
+  }
+  // The list of cube layer k's cut edges that node n belongs to: grid nodes 0 (layer k) or 1
+  // (k + 1), cube centres 2 (k) or 3 (k + 1).
+  int list(long n, long k) const {
+    return n < G ? int(n >= (k + 1) * nx * ny) : 2 + int(n - G >= (k + 1) * cx * cy);
+  }
+  // Isosurface stuffing's warp threshold on edge (a, b), a fraction of its length: BCC alpha_long
+  // on edges of length h (grid-grid, centre-centre), alpha_short on centre-corner edges.
+  double alpha(long a, long b) const { return !bcc ? 0.2 : (a < G) == (b < G) ? 0.24999 : 0.41189; }
+  // The positive background tetrahedra of cube layer k with a node inside (by cls) among their
+  // cube's corners (Kuhn) or their face's corners and two cube centres (BCC).
+  template <class Class>
+  std::vector<Tet> tetrahedra(long k, Class&& cls) const {
+    return bcc ? bcc_tetrahedra(k, cls) : kuhn_tetrahedra(k, cls);
+  }
+
+  template <class Class>
+  std::vector<Tet> kuhn_tetrahedra(long k, Class&& cls) const {
+    std::vector<long> ids;
+    for (long q = k * cx * cy; q < (k + 1) * cx * cy; ++q) {
+      const long i = q % cx, j = (q / cx) % cy;
+      bool any = false;
+      for (int corner = 0; corner < 8 && !any; ++corner)
+        any = cls(g.index(i + (corner & 1), j + ((corner >> 1) & 1), k + (corner >> 2))) > 0;
+      for (long t = 0; any && t < 6; ++t)
+        ids.push_back(6 * q + t);
+    }
+    const Eigen::MatrixXi T = background_cell_nodes(g, BackgroundCells::tetrahedra, ids);
+    std::vector<Tet> out(size_t(T.rows()));
+    for (long r = 0; r < T.rows(); ++r)
+      out[size_t(r)] = {T(r, 0), T(r, 1), T(r, 2), T(r, 3)};
+    return out;
+  }
+
+  // Cube (i, j, k) and its neighbour along axis d share the face at node i_d + 1, whose corners
+  // a0..a3 run counter-clockwise about axis d: the tetrahedra (centre, centre', a_m, a_m+1) are
+  // positive ((c' - c) x (a_m - c) . (a_m+1 - c) = h e_d . (a_m - p) x (a_m+1 - p) > 0).
+  template <class Class>
+  std::vector<Tet> bcc_tetrahedra(long k, Class&& cls) const {
+    constexpr int kU[4] = {0, 1, 1, 0}, kV[4] = {0, 0, 1, 1};
+    const long counts[3] = {cx, cy, cz};
+    std::vector<Tet> out;
+    for (long j = 0; j < cy; ++j)
+      for (long i = 0; i < cx; ++i)
+        for (int d = 0; d < 3; ++d) {
+          long at[3] = {i, j, k};
+          if (at[d] + 1 >= counts[d])
+            continue;
+          const long c0 = G + c.index(at[0], at[1], at[2]);
+          ++at[d];
+          const long c1 = G + c.index(at[0], at[1], at[2]);
+          long a[4];
+          bool any = cls(c0) > 0 || cls(c1) > 0;
+          for (int m = 0; m < 4; ++m) {
+            long p[3] = {at[0], at[1], at[2]};
+            p[(d + 1) % 3] += kU[m], p[(d + 2) % 3] += kV[m];
+            a[m] = g.index(p[0], p[1], p[2]);
+            any = any || cls(a[m]) > 0;
+          }
+          for (int m = 0; any && m < 4; ++m)
+            out.push_back({c0, c1, a[m], a[(m + 1) % 4]});
+        }
+    return out;
+  }
+};
 
 // The cut edges sorted, without repeats, from each layer of cubes' edges by the node layer of their
 // inside node (own: the cubes' lower layer, up: the upper one): each node layer's edges are sorted
@@ -131,47 +214,41 @@ double signed_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const E
 } // namespace
 
 CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
-                             const Eigen::VectorXd& S, double epsilon, int threads) {
-  if (S.size() != g.size())
-    throw std::invalid_argument("cut_tetrahedra: S must hold one value per grid node");
+                             const Eigen::VectorXd& S, double epsilon, int threads,
+                             Lattice lattice) {
+  const Background bg(g, lattice);
+  if (S.size() != bg.N)
+    throw std::invalid_argument("cut_tetrahedra: S must hold one value per lattice node");
   if (!(epsilon >= 0))
     throw std::invalid_argument("cut_tetrahedra: epsilon must be >= 0");
   threads = detail::resolve_threads(threads);
-  const long nx = g.nodes(0), ny = g.nodes(1), cx = nx - 1, cy = ny - 1, cz = g.nodes(2) - 1;
-  const long G = g.size();
+  const long cz = bg.cz, N = bg.N;
   auto cls = [&](long n) { return node_class(S(n), epsilon); };
   // Pass 1, layers of cubes in parallel: the background tetrahedra with an inside node, whole
-  // (no outside node) or mixed, and the edges to cut.
+  // (no outside node) or mixed, and the edges to cut (lists by Background::list).
   std::vector<std::vector<Tet>> whole(size_t(std::max(cz, 0L))), mixed(whole.size());
-  std::vector<std::vector<Edge>> own(whole.size()), up(whole.size());
+  std::vector<std::vector<Edge>> edges[4];
+  for (auto& l : edges)
+    l.resize(whole.size());
   detail::parallel_for(cz, threads, [&](long k, int) {
-    std::vector<long> ids;
-    for (long q = k * cx * cy; q < (k + 1) * cx * cy; ++q) {
-      const long i = q % cx, j = (q / cx) % cy;
-      bool any = false;
-      for (int corner = 0; corner < 8 && !any; ++corner)
-        any = cls(g.index(i + (corner & 1), j + ((corner >> 1) & 1), k + (corner >> 2))) > 0;
-      for (long t = 0; any && t < 6; ++t)
-        ids.push_back(6 * q + t);
-    }
-    const Eigen::MatrixXi T = background_cell_nodes(g, BackgroundCells::tetrahedra, ids);
-    for (long r = 0; r < T.rows(); ++r) {
+    for (const Tet& t : bg.tetrahedra(k, cls)) {
       int c[4], inside = 0, outside = 0;
       for (int j = 0; j < 4; ++j)
-        c[j] = cls(T(r, j)), inside += c[j] > 0, outside += c[j] < 0;
+        c[j] = cls(t[size_t(j)]), inside += c[j] > 0, outside += c[j] < 0;
       if (inside == 0)
         continue;
-      const Tet t = {T(r, 0), T(r, 1), T(r, 2), T(r, 3)};
       (outside == 0 ? whole : mixed)[size_t(k)].push_back(t);
       for (int a = 0; outside > 0 && a < 4; ++a)
         for (int b = 0; b < 4; ++b)
-          if (c[a] > 0 && c[b] < 0) // by the node layer of the inside node
-            (t[size_t(a)] < (k + 1) * nx * ny ? own : up)[size_t(k)].push_back(
-                {t[size_t(a)], t[size_t(b)]});
+          if (c[a] > 0 && c[b] < 0)
+            edges[bg.list(t[size_t(a)], k)][size_t(k)].push_back({t[size_t(a)], t[size_t(b)]});
     }
   });
-  const std::vector<Edge> E = layered_edges(own, up, threads);
-  auto point = [&](long n) { return g.point(n % nx, (n / nx) % ny, n / (nx * ny)); };
+  // Edges from grid nodes, then from cube centres: in order.
+  std::vector<Edge> E = layered_edges(edges[0], edges[1], threads);
+  const std::vector<Edge> from_centres = layered_edges(edges[2], edges[3], threads);
+  E.insert(E.end(), from_centres.begin(), from_centres.end());
+  auto point = [&](long n) { return bg.point(n); };
   // The cut points: roots of F on the edges, and (for orientation) of the linear interpolant.
   const long ne = long(E.size());
   Points3 A(ne, 3), B(ne, 3);
@@ -188,25 +265,26 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
   ro.threads = threads;
   const Eigen::VectorXd t = ne > 0 ? roots_on_segments(f, A, B, FA, FB, ro) : Eigen::VectorXd();
   auto cut = [&](long a, long b) {
-    return G + long(std::lower_bound(E.begin(), E.end(), Edge{a, b}) - E.begin());
+    return N + long(std::lower_bound(E.begin(), E.end(), Edge{a, b}) - E.begin());
   };
   auto reference = [&](long id) -> Eigen::Vector3d {
-    if (id < G)
+    if (id < N)
       return point(id);
-    const long e = id - G;
+    const long e = id - N;
     return A.row(e).transpose() + lin(e) * (B.row(e) - A.row(e)).transpose();
   };
-  // Warping (Labelle and Shewchuk's isosurface stuffing): a node within kWarp of its edge from a
-  // cut point moves onto the nearest such point and becomes a surface node, so that no piece is
-  // a sliver at a node. Along an edge of a Kuhn tetrahedron a node moves at most kWarp sqrt(3) h,
-  // less than the smallest height of the tetrahedra around it (h / sqrt 2): they stay positive.
-  constexpr double kWarp = 0.2;
+  // Warping (Labelle and Shewchuk's isosurface stuffing): a node within alpha (Background::alpha)
+  // of its edge from a cut point moves onto the nearest such point and becomes a surface node, so
+  // that no piece is a sliver at a node. Along an edge of a Kuhn tetrahedron a node moves at most
+  // 0.2 sqrt(3) h, less than the smallest height of the tetrahedra around it (h / sqrt 2): they
+  // stay positive; the BCC thresholds are the paper's (its dihedral-angle bounds).
   std::vector<std::pair<long, std::pair<double, long>>> near; // node, (distance, edge)
   for (long e = 0; e < ne; ++e) {
     const double len = (B.row(e) - A.row(e)).norm();
-    if (t(e) < kWarp)
+    const double alpha = bg.alpha(E[size_t(e)].first, E[size_t(e)].second);
+    if (t(e) < alpha)
       near.push_back({E[size_t(e)].first, {t(e) * len, e}});
-    else if (t(e) > 1 - kWarp)
+    else if (t(e) > 1 - alpha)
       near.push_back({E[size_t(e)].second, {(1 - t(e)) * len, e}});
   }
   std::sort(near.begin(), near.end());
@@ -286,15 +364,15 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
     lists.push_back(&l);
   CutTetrahedra out;
   std::vector<long> used;
-  out.C = renumbered(lists, G + ne, threads, used);
+  out.C = renumbered(lists, N + ne, threads, used);
   for (const auto& l : whole)
     out.whole += long(l.size());
   out.V.resize(long(used.size()), 3);
   std::vector<long> warped_in(size_t(detail::chunk_count(long(used.size()), kBatch)), 0);
   detail::parallel_chunks(long(used.size()), kBatch, threads, [&](long task, long r0, long r1) {
     for (long r = r0; r < r1; ++r) {
-      const long id = used[size_t(r)], e = id - G;
-      if (id < G) {
+      const long id = used[size_t(r)], e = id - N;
+      if (id < N) {
         out.V.row(r) = position(id).transpose();
         warped_in[size_t(task)] += warped(id) >= 0;
       } else {
@@ -304,7 +382,7 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
   });
   for (long w : warped_in)
     out.warped += w;
-  out.cut_nodes = long(used.end() - std::lower_bound(used.begin(), used.end(), G));
+  out.cut_nodes = long(used.end() - std::lower_bound(used.begin(), used.end(), N));
   return out;
 }
 

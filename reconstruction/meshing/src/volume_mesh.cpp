@@ -462,10 +462,11 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
   }
   if (layer != nullptr) // a valid mesh before the interior moves
     out.held = hold_folded_layer(vm.C, *layer, h, o.threads, vm.V, held);
-  if (o.interior_sweeps > 0) {
-    say("smoothing the interior, " + std::to_string(o.interior_sweeps) + " sweeps (functional 15)");
+  if (interior_sweeps_of(o) > 0) {
+    say("smoothing the interior, " + std::to_string(interior_sweeps_of(o)) +
+        " sweeps (functional 15)");
     VolumeSmoothingOptions so;
-    so.sweeps = o.interior_sweeps;
+    so.sweeps = interior_sweeps_of(o);
     so.threads = o.threads;
     const Eigen::MatrixXd before = vm.V;
     out.smoothing = smooth_volume(vm.V, vm.C, vm.boundary, so);
@@ -501,22 +502,6 @@ Eigen::VectorXd sampled_grid(const ImplicitFunction& f, const RegularGrid& g,
   return S;
 }
 
-// The tetrahedral mesh of the background tetrahedra clipped at F = 0 (cut_tetrahedra): nodes on
-// internal zero sheets count as inside, the boundary is the facets used once.
-VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g, Eigen::VectorXd& S,
-                    const VolumeMeshOptions& o, VolumeMeshInfo& out) {
-  fill_zero_sheets(g, S, o.epsilon, o.threads);
-  out.inside_nodes = (S.array() > o.epsilon).count();
-  CutTetrahedra cut = cut_tetrahedra(f, g, S, o.epsilon, o.threads);
-  VolumeMesh vm;
-  vm.V = std::move(cut.V);
-  vm.C = std::move(cut.C);
-  out.inner_cells = cut.whole;
-  out.layer_elements = vm.C.rows() - cut.whole;
-  mark_boundary(vm, 3, o.threads);
-  return vm;
-}
-
 // The part of the body (the grid clipped at F = 0, zero sheets filled in `whole`) that no element
 // of vm covers, and the cell that would keep the loss within kLostVolumeWarning.
 void measure_coverage(const ImplicitFunction& f, const RegularGrid& g, const Eigen::VectorXd& whole,
@@ -549,6 +534,44 @@ Eigen::VectorXd padded_samples(const ImplicitFunction& f, const RegularGrid& g0,
   fill_zero_sheets(g, S, o.epsilon, o.threads);
   out.inside_nodes = (S.array() > o.epsilon).count();
   return S;
+}
+
+// The tetrahedral mesh of the lattice's tetrahedra clipped at F = 0 (cut_tetrahedra) on g (Kuhn)
+// or on g padded by a cell (BCC, whose tetrahedra then cover g's box; its cube centres sampled
+// after the nodes), nodes on internal zero sheets inside (of either grid); the boundary is the
+// facets used once; then step (4) of volume_mesh with the boundary fixed.
+VolumeMesh cut_mesh(const ImplicitFunction& f, const RegularGrid& g0, const VolumeMeshOptions& o,
+                    VolumeMeshInfo& out) {
+  RegularGrid g = g0;
+  Eigen::VectorXd S;
+  if (o.lattice == Lattice::bcc) {
+    S = padded_samples(f, g0, o, out, g);
+    const RegularGrid c = cube_centres(g);
+    if (o.progress)
+      o.progress("cube centres, sampling F (BCC lattice)");
+    Eigen::VectorXd Sc;
+    sample_grid(f, c, Sc, o.threads);
+    fill_zero_sheets(c, Sc, o.epsilon, o.threads);
+    S.conservativeResize(g.size() + c.size());
+    S.tail(c.size()) = Sc;
+  } else {
+    S = sampled_grid(f, g, o, out);
+    fill_zero_sheets(g, S, o.epsilon, o.threads);
+  }
+  out.inside_nodes = (S.array() > o.epsilon).count();
+  if (o.progress)
+    o.progress(std::string("cutting the ") + lattice_name(o.lattice) +
+               " lattice's tetrahedra at F = 0");
+  CutTetrahedra cut = cut_tetrahedra(f, g, S, o.epsilon, o.threads, o.lattice);
+  VolumeMesh vm;
+  vm.V = std::move(cut.V);
+  vm.C = std::move(cut.C);
+  out.inner_cells = cut.whole;
+  out.layer_elements = vm.C.rows() - cut.whole;
+  mark_boundary(vm, 3, o.threads);
+  if (vm.C.rows() > 0)
+    smooth_and_hold(f, g.spacing.minCoeff(), o, nullptr, vm, out);
+  return vm;
 }
 
 // Hexahedra dual to the inside nodes of g padded by a cell (dual_hexahedra), nodes on internal zero
@@ -726,7 +749,7 @@ VolumeMesh pillow_mesh(const ImplicitFunction& f, const RegularGrid& g0, const V
     if (o.progress)
       o.progress("untangling the pillow layer");
     VolumeSmoothingOptions so; // the core points spread first: fewer folds to untangle
-    so.sweeps = o.interior_sweeps;
+    so.sweeps = interior_sweeps_of(o);
     so.threads = o.threads;
     smooth_volume(vm.V, vm.C, vm.boundary, so);
     untangle_pillows(f, g.spacing.minCoeff(), p.missed, vm, o.threads);
@@ -828,14 +851,9 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
   if (!tets && o.boundary == VolumeBoundary::cut)
     return default_hexahedra(f, g, o, out);
 
+  if (tets && o.boundary == VolumeBoundary::cut)
+    return cut_mesh(f, g, o, out);
   Eigen::VectorXd S = sampled_grid(f, g, o, out);
-  if (tets && o.boundary == VolumeBoundary::cut) {
-    say("cutting the grid's tetrahedra at F = 0");
-    VolumeMesh vm = cut_mesh(f, g, S, o, out);
-    if (vm.C.rows() > 0)
-      smooth_and_hold(f, g.spacing.minCoeff(), o, nullptr, vm, out);
-    return vm;
-  }
   // The body as the clipped grid sees it (zero sheets inside), for the layer's coverage.
   Eigen::VectorXd whole = S;
   fill_zero_sheets(g, whole, o.epsilon, o.threads);

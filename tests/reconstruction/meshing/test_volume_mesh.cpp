@@ -141,6 +141,77 @@ TEST_CASE("volume_mesh: defaults give valid meshes of closed-form bodies", "[vol
     }
 }
 
+TEST_CASE("cut_tetrahedra: the BCC lattice's tetrahedra have dihedral angles of 60 and 90 degrees",
+          "[volume]") {
+  // A grid of 3 x 3 x 3 cubes wholly inside: 4 tetrahedra around each of the 54 faces shared by
+  // two cubes (an octahedron of volume h^3 / 3), whole. Each tetrahedron has two edges of length
+  // h (centre-centre, face edge) with dihedral angle 90 degrees and four of length sqrt(3) h / 2
+  // with 60 (Labelle & Shewchuk 2007, Fig. 2).
+  RegularGrid g;
+  g.spacing.setConstant(0.5);
+  g.nodes.setConstant(4);
+  const long N = g.size() + cube_centres(g).size();
+  const CutTetrahedra c =
+      cut_tetrahedra(test::sphere(1), g, Eigen::VectorXd::Ones(N), 0, 1, Lattice::bcc);
+  REQUIRE(c.C.rows() == 216);
+  CHECK(c.whole == 216);
+  CHECK(c.V.rows() == N - 8); // the grid's 8 corners lie on no face shared by two cubes
+  const double pi = 3.14159265358979323846;
+  for (long t = 0; t < c.C.rows(); ++t)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        int other[2], n = 0;
+        for (int r = 0; r < 4; ++r)
+          if (r != i && r != j)
+            other[n++] = r;
+        const Eigen::Vector3d p = c.V.row(c.C(t, i)), e = c.V.row(c.C(t, j)).transpose() - p;
+        Eigen::Vector3d u = c.V.row(c.C(t, other[0])).transpose() - p;
+        Eigen::Vector3d v = c.V.row(c.C(t, other[1])).transpose() - p;
+        u -= u.dot(e) / e.squaredNorm() * e, v -= v.dot(e) / e.squaredNorm() * e;
+        const double angle = std::acos(u.dot(v) / (u.norm() * v.norm())) * 180 / pi;
+        const bool long_edge = std::abs(e.norm() - 0.5) < 1e-12;
+        INFO("tetrahedron " << t << ", edge " << i << j << ", length " << e.norm());
+        CHECK(angle == Approx(long_edge ? 90 : 60).margin(1e-9));
+        CHECK((long_edge || std::abs(e.norm() - std::sqrt(3.0) / 4) < 1e-12));
+      }
+  const VolumeQuality q = volume_quality(c.V, c.C);
+  CHECK(q.inverted == 0);
+  CHECK(q.volume == Approx(54 * 0.125 / 3).epsilon(1e-12));
+}
+
+TEST_CASE("volume_mesh: BCC tetrahedra of smooth bodies keep their dihedral angles", "[volume]") {
+  // Isosurface stuffing's bound (Labelle & Shewchuk 2007, with alpha_long 0.24999, alpha_short
+  // 0.41189): dihedral angles in [10.7, 164.8] degrees where the surface is smooth on the lattice
+  // scale, as a sphere and a torus (tube 3-6 cells thick) are here. Measured 15.4 .. 158.0 (Kuhn
+  // tetrahedra on the same grids, interior smoothed as by default: 4.5 .. 161.3, 34-346 elements
+  // outside [10, 170]).
+  const struct {
+    const char* name;
+    ImplicitFunction f;
+    int resolution;
+  } cases[] = {{"sphere", test::sphere(1.0), 12},
+               {"sphere", test::sphere(1.0), 24},
+               {"torus", test::torus(1.0, 0.4), 16},
+               {"torus", test::torus(1.0, 0.4), 32}};
+  for (const auto& c : cases) {
+    VolumeMeshOptions o;
+    o.resolution = c.resolution;
+    const VolumeMesh bcc = volume_mesh(c.f, o);
+    o.lattice = Lattice::kuhn;
+    const VolumeMesh kuhn = volume_mesh(c.f, o);
+    const VolumeQuality q = volume_quality(bcc.V, bcc.C), k = volume_quality(kuhn.V, kuhn.C);
+    INFO(c.name << " at " << c.resolution << " cells: BCC " << q.min_dihedral_deg << " .. "
+                << q.max_dihedral_deg << ", Kuhn " << k.min_dihedral_deg << " .. "
+                << k.max_dihedral_deg);
+    CHECK(q.min_dihedral_deg > 10.7);
+    CHECK(q.max_dihedral_deg < 164.8);
+    CHECK(q.outside_10_170 == 0);
+    CHECK(q.inverted == 0);
+    CHECK(q.min_dihedral_deg > k.min_dihedral_deg);
+    CHECK(q.mean_radius_ratio > k.mean_radius_ratio);
+  }
+}
+
 TEST_CASE("volume_mesh: the volume converges at second order (sphere, torus)", "[volume]") {
   const double pi = 3.14159265358979323846;
   const struct {
@@ -172,9 +243,13 @@ TEST_CASE("volume_mesh: the volume converges at second order (sphere, torus)", "
 }
 
 TEST_CASE("volume_mesh: the same mesh for any thread count", "[volume]") {
-  for (const VolumeElements e : {VolumeElements::tetrahedra, VolumeElements::hexahedra}) {
+  const std::pair<VolumeElements, Lattice> kinds[] = {{VolumeElements::tetrahedra, Lattice::bcc},
+                                                      {VolumeElements::tetrahedra, Lattice::kuhn},
+                                                      {VolumeElements::hexahedra, Lattice::bcc}};
+  for (const auto& [e, l] : kinds) {
     VolumeMeshOptions o;
     o.elements = e;
+    o.lattice = l;
     o.resolution = 20;
     o.threads = 1;
     const VolumeMesh a = volume_mesh(test::body11_function(), o);
@@ -198,10 +273,12 @@ TEST_CASE("volume_mesh: shipped models give the same mesh on 1, 2 and 3 threads"
   const struct {
     VolumeElements elements;
     VolumeBoundary boundary;
-  } kinds[] = {{VolumeElements::tetrahedra, VolumeBoundary::cut},
-               {VolumeElements::tetrahedra, VolumeBoundary::projected},
-               {VolumeElements::hexahedra, VolumeBoundary::cut},
-               {VolumeElements::hexahedra, VolumeBoundary::dual}};
+    Lattice lattice;
+  } kinds[] = {{VolumeElements::tetrahedra, VolumeBoundary::cut, Lattice::bcc},
+               {VolumeElements::tetrahedra, VolumeBoundary::cut, Lattice::kuhn},
+               {VolumeElements::tetrahedra, VolumeBoundary::projected, Lattice::bcc},
+               {VolumeElements::hexahedra, VolumeBoundary::cut, Lattice::bcc},
+               {VolumeElements::hexahedra, VolumeBoundary::dual, Lattice::bcc}};
   for (const auto& c : cases) {
     const ImplicitFunction f = load_model(std::string(INTERLIN_DATA_DIR) + "/models/" + c.model);
     for (const auto& k : kinds) {
@@ -210,12 +287,13 @@ TEST_CASE("volume_mesh: shipped models give the same mesh on 1, 2 and 3 threads"
       o.cell = c.cell;
       o.elements = k.elements;
       o.boundary = k.boundary;
+      o.lattice = k.lattice;
       o.threads = 1;
       VolumeMeshInfo one;
       const VolumeMesh a = volume_mesh(f, o, &one);
       REQUIRE(a.C.rows() > 0);
       for (const int threads : {2, 3}) {
-        INFO(c.model << ", " << boundary_name(k.boundary) << " "
+        INFO(c.model << ", " << boundary_name(k.boundary) << " " << lattice_name(k.lattice) << " "
                      << (k.elements == VolumeElements::tetrahedra ? "tetrahedra" : "hexahedra")
                      << ", " << threads << " threads");
         o.threads = threads;
@@ -297,30 +375,38 @@ TEST_CASE("volume_mesh: thin walls of any orientation give no inverted element",
 
 namespace {
 
-// Each model at the given grids (cells along the longest side), tetrahedra, projected and dual
-// hexahedra: no inverted element, every boundary node not held on F = 0, a closed boundary. With
-// `report`, one line per mesh: the minimum scaled Jacobian and the volume against the default
-// tetrahedra's (the grid clipped at F = 0) on the same grid.
+// Each model at the given grids (cells along the longest side), tetrahedra on either lattice,
+// projected and dual hexahedra: no inverted element, every boundary node not held on F = 0, a
+// closed boundary (tetrahedra: conforming). With `report`, one line per mesh: the minimum scaled
+// Jacobian and the volume against the default tetrahedra's (the BCC lattice clipped at F = 0) on
+// the same grid.
 void check_shipped_models(const std::vector<const char*>& names, const std::vector<int>& grids,
                           bool report = false) {
-  const std::pair<VolumeElements, VolumeBoundary> kinds[] = {
-      {VolumeElements::tetrahedra, VolumeBoundary::cut},
-      {VolumeElements::hexahedra, VolumeBoundary::projected},
-      {VolumeElements::hexahedra, VolumeBoundary::dual},
-      {VolumeElements::hexahedra, VolumeBoundary::cut}}; // the default: pillowed, or dual
+  const struct {
+    VolumeElements e;
+    VolumeBoundary b;
+    Lattice lattice;
+  } kinds[] = {{VolumeElements::tetrahedra, VolumeBoundary::cut, Lattice::bcc},
+               {VolumeElements::tetrahedra, VolumeBoundary::cut, Lattice::kuhn},
+               {VolumeElements::hexahedra, VolumeBoundary::projected, Lattice::bcc},
+               {VolumeElements::hexahedra, VolumeBoundary::dual, Lattice::bcc},
+               {VolumeElements::hexahedra, VolumeBoundary::cut, Lattice::bcc}}; // pillow or dual
   for (const char* name : names)
     for (const int resolution : grids) {
       double clipped = 0;
-      for (const auto& [e, b] : kinds) {
+      for (const auto& [e, b, lattice] : kinds) {
         const ImplicitFunction f =
             load_model(std::string(INTERLIN_DATA_DIR) + "/models/" + std::string(name));
         VolumeMeshOptions o;
         o.resolution = resolution;
         o.elements = e;
         o.boundary = b;
+        o.lattice = lattice;
         VolumeMeshInfo info;
         const VolumeMesh m = volume_mesh(f, o, &info);
-        const char* kind = e == VolumeElements::tetrahedra ? "tetrahedra"
+        const bool tets = e == VolumeElements::tetrahedra;
+        const char* kind = tets && lattice == Lattice::bcc ? "BCC tetrahedra"
+                           : tets                          ? "Kuhn tetrahedra"
                            : b == VolumeBoundary::dual     ? "dual hexahedra"
                            : b == VolumeBoundary::cut      ? "default hexahedra"
                                                            : "hexahedra";
@@ -333,7 +419,9 @@ void check_shipped_models(const std::vector<const char*>& names, const std::vect
         CHECK(q.min_scaled_jacobian > 0);
         CHECK(info.max_boundary_f < 1e-7 * f.box.diagonal().norm());
         CHECK(check_mesh(m.V, triangles(m)).boundary_edges == 0);
-        if (e == VolumeElements::tetrahedra)
+        if (tets) // conforming: every interior facet shared by two elements
+          CHECK(facet_set(boundary_facets(m.C)) == facet_set(m.B));
+        if (tets && lattice == Lattice::bcc)
           clipped = q.volume;
         if (report)
           std::printf("%-18s %3d %-15s %8ld elements, inverted %ld, min scaled Jacobian %.3g, "
@@ -434,9 +522,10 @@ TEST_CASE("volume_mesh: where the body reaches the box, counted as implicit_mesh
     VolumeMeshOptions o;
     o.elements = e;
     o.resolution = 12;
-    // The projected layer on the box's own grid (dual and pillowed hexahedra pad it by a cell:
-    // their outer nodes lie a cell beyond the box)
+    // Kuhn's tetrahedra and the projected layer on the box's own grid (BCC tetrahedra, dual and
+    // pillowed hexahedra pad it by a cell: their outer nodes lie a cell beyond the box)
     o.boundary = e == VolumeElements::tetrahedra ? VolumeBoundary::cut : VolumeBoundary::projected;
+    o.lattice = Lattice::kuhn;
     VolumeMeshInfo info;
     volume_mesh(f, o, &info);
     CHECK(info.clipped == 0);
@@ -457,4 +546,14 @@ TEST_CASE("volume_mesh: where the body reaches the box, counted as implicit_mesh
     CHECK(info.on_zero <= boundary - on_box);
     CHECK(info.on_zero >= boundary - on_box - info.held - info.unprojected);
   }
+  // BCC tetrahedra: the padded grid's outer nodes, none in the ball's own box.
+  VolumeMeshOptions o;
+  o.resolution = 12;
+  VolumeMeshInfo info;
+  volume_mesh(f, o, &info);
+  CHECK(info.clipped == 0);
+  o.box = cut;
+  const VolumeMesh m = volume_mesh(f, o, &info);
+  CHECK(info.clipped > 0);
+  CHECK(volume_quality(m.V, m.C).inverted == 0);
 }

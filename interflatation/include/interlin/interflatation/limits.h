@@ -39,12 +39,14 @@ inline constexpr long long mesh_triangles = 20'000'000;
 // interlin mesh, time: nodes of the sampling grid, each one evaluation of the model (a cube
 // box at --resolution 1024 fits); --max-grid-nodes.
 inline constexpr long long grid_nodes = 1'100'000'000;
-// interlin mesh --volume, memory: elements the grid's cells could hold (6 tetrahedra or 1
-// hexahedron per cell; an upper bound, checked before any work). The command peaks at about 160
-// bytes per tetrahedron (a box-filling cuboid at resolutions 24 to 64) and 720-810 per hexahedron
-// (resolutions 64 to 96, pillowed or projected: the coverage measurement clips 6 tetrahedra per
-// cell), so both defaults mean about 4 GB when the body fills the grid; --max-elements.
-inline constexpr long long volume_tetrahedra = 25'000'000;
+// interlin mesh --volume, memory: elements the grid's cells could hold (12 tetrahedra on the BCC
+// lattice, 6 on Kuhn's, or 1 hexahedron per cell; an upper bound, checked before any work). The
+// command peaks at about 120-130 bytes per tetrahedron on either lattice (a box-filling cuboid at
+// resolutions 32 to 64; 160 before session 18) and 720-810 per hexahedron (resolutions 64 to 96,
+// pillowed or projected: the coverage measurement clips 6 tetrahedra per cell), so both defaults
+// mean about 4 GB when the body fills the grid (30 M tetrahedra: BCC at the default resolution
+// 128 asks for up to 25.8 M); --max-elements.
+inline constexpr long long volume_tetrahedra = 30'000'000;
 inline constexpr long long volume_hexahedra = 5'000'000;
 // interlin implicit, memory: nodes of the model's grid, counted before any work as for a cube
 // box, (resolution + 5)^3 (the grid reaches two cells beyond the box). Building a section body
