@@ -53,12 +53,12 @@ void split_prism(const long p[6], std::vector<Tet>& out) {
 // inside node. cut(a, b) is the id of the point on edge (a inside, b outside); a surface node is
 // its own point on every edge to the outside.
 template <class Cut>
-void clip(const int n[4], const int c[4], Cut&& cut, std::vector<Tet>& out) {
+void clip(const Tet& n, const int c[4], Cut&& cut, std::vector<Tet>& out) {
   int keep[4], drop[4], nk = 0, nd = 0;
   for (int j = 0; j < 4; ++j)
     (c[j] >= 0 ? keep[nk++] : drop[nd++]) = j;
   auto at = [&](int k, int d) { // the point on the edge from keep[k] to drop[d]
-    return c[keep[k]] == 0 ? long(n[keep[k]]) : cut(n[keep[k]], n[drop[d]]);
+    return c[keep[k]] == 0 ? n[keep[k]] : cut(n[keep[k]], n[drop[d]]);
   };
   if (nk == 1) {
     out.push_back({n[keep[0]], at(0, 0), at(0, 1), at(0, 2)});
@@ -308,7 +308,6 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
     all.swap(kept);
     all.insert(all.end(), mixed[size_t(k)].begin(), mixed[size_t(k)].end());
     for (const Tet& m : all) {
-      const int n[4] = {int(m[0]), int(m[1]), int(m[2]), int(m[3])};
       const int c[4] = {cls2(m[0]), cls2(m[1]), cls2(m[2]), cls2(m[3])};
       if (std::max({c[0], c[1], c[2], c[3]}) < 1) {
         if (std::min({c[0], c[1], c[2], c[3]}) == 0) // all on F = 0: inside or not, see below
@@ -320,7 +319,7 @@ CutTetrahedra cut_tetrahedra(const ImplicitFunction& f, const RegularGrid& g,
         continue;
       }
       local.clear();
-      clip(n, c, cut, local);
+      clip(m, c, cut, local);
       for (Tet p : local) {
         std::array<long, 4> s = p;
         std::sort(s.begin(), s.end());
