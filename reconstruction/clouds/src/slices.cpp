@@ -180,52 +180,59 @@ std::vector<double> density_cuts(const std::vector<std::pair<double, Index>>& s,
   return cuts;
 }
 
-// The parts between the cuts (indices into cuts.size() + 1 parts) whose station spread exceeds
-// kWideSlice times the median part's (at least 1e-9 of the stations' range); none when there are
-// fewer than 3 parts.
+// Where each part between the cuts begins in s (sorted): cuts.size() + 2 indices, the last
+// s.size(); a station on a cut belongs to the part above it, as in family_from_cuts.
+std::vector<size_t> part_starts(const std::vector<std::pair<double, Index>>& s,
+                                const std::vector<double>& cuts) {
+  std::vector<size_t> b{0};
+  for (double cut : cuts)
+    b.push_back(size_t(std::lower_bound(s.begin(), s.end(), cut,
+                                        [](const auto& e, double x) { return e.first < x; }) -
+                       s.begin()));
+  b.push_back(s.size());
+  return b;
+}
+
+// The parts (part_starts b) whose station spread exceeds kWideSlice times the median part's (at
+// least 1e-9 of the stations' range); none when there are fewer than 3 parts.
 std::vector<size_t> wide_parts(const std::vector<std::pair<double, Index>>& s,
-                               const std::vector<double>& cuts) {
-  std::vector<double> sum(cuts.size() + 1, 0), sq(cuts.size() + 1, 0), n(cuts.size() + 1, 0);
-  for (const auto& [station, row] : s) {
-    const size_t k = size_t(std::upper_bound(cuts.begin(), cuts.end(), station) - cuts.begin());
-    sum[k] += station, n[k] += 1;
-  }
-  for (const auto& [station, row] : s) {
-    const size_t k = size_t(std::upper_bound(cuts.begin(), cuts.end(), station) - cuts.begin());
-    sq[k] += std::pow(station - sum[k] / n[k], 2);
-  }
-  std::vector<double> spread(n.size());
-  for (size_t k = 0; k < n.size(); ++k)
-    spread[k] = n[k] > 0 ? std::sqrt(sq[k] / n[k]) : 0;
+                               const std::vector<size_t>& b) {
   std::vector<size_t> wide;
-  if (spread.size() < 3)
+  const size_t parts = b.size() - 1;
+  if (parts < 3)
     return wide;
+  std::vector<double> spread(parts, 0);
+  for (size_t k = 0; k < parts; ++k) {
+    const double n = double(b[k + 1] - b[k]);
+    double mean = 0, sq = 0;
+    for (size_t i = b[k]; i < b[k + 1]; ++i)
+      mean += s[i].first / n;
+    for (size_t i = b[k]; i < b[k + 1]; ++i)
+      sq += std::pow(s[i].first - mean, 2);
+    spread[k] = n > 0 ? std::sqrt(sq / n) : 0;
+  }
   std::vector<double> sorted = spread;
-  std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+  std::nth_element(sorted.begin(), sorted.begin() + long(parts / 2), sorted.end());
   // spreads of round-off (exact slices) count as 1e-9 of the stations' range
   const double floor = 1e-9 * (s.back().first - s.front().first);
-  for (size_t k = 0; k < spread.size(); ++k)
-    if (spread[k] > kWideSlice * std::max(sorted[sorted.size() / 2], floor))
+  for (size_t k = 0; k < parts; ++k)
+    if (spread[k] > kWideSlice * std::max(sorted[parts / 2], floor))
       wide.push_back(k);
   return wide;
 }
 
-// The cuts with the wide parts split at the valleys of their own density (density_cuts, kernel
-// width `width`).
+// The cuts with the wide parts (of part_starts b) split at the valleys of their own density
+// (density_cuts, kernel width `width`).
 std::vector<double> split_parts(const std::vector<std::pair<double, Index>>& s,
-                                std::vector<double> cuts, const std::vector<size_t>& wide,
-                                double width) {
-  const std::vector<double> given = cuts;
-  for (size_t k : wide) {
-    std::vector<std::pair<double, Index>> part;
-    for (const auto& e : s)
-      if (size_t(std::upper_bound(given.begin(), given.end(), e.first) - given.begin()) == k)
-        part.push_back(e);
-    if (part.size() >= 2 * size_t(kMinSlicePoints)) {
-      const std::vector<double> inner = density_cuts(part, width);
+                                std::vector<double> cuts, const std::vector<size_t>& b,
+                                const std::vector<size_t>& wide, double width) {
+  for (size_t k : wide)
+    if (b[k + 1] - b[k] >= 2 * size_t(kMinSlicePoints)) {
+      const std::vector<double> inner = density_cuts(
+          std::vector<std::pair<double, Index>>(s.begin() + long(b[k]), s.begin() + long(b[k + 1])),
+          width);
       cuts.insert(cuts.end(), inner.begin(), inner.end());
     }
-  }
   std::sort(cuts.begin(), cuts.end());
   return cuts;
 }
@@ -275,13 +282,19 @@ Split split_stations(const Eigen::MatrixX3d& P, const SliceFamily& candidate,
   for (Index i = 0; i < n; ++i)
     s[size_t(i)] = {candidate.station(P.row(i).transpose()), i};
   std::sort(s.begin(), s.end());
+  double noise = -1; // station_noise, found on first use
+  auto width = [&] {
+    if (noise < 0)
+      noise = station_noise(P, candidate, neighbours.get());
+    return noise;
+  };
   std::vector<double> cuts = gap_cuts(s);
-  if (const std::vector<size_t> wide = wide_parts(s, cuts); !wide.empty())
-    cuts = split_parts(s, cuts, wide, station_noise(P, candidate, neighbours.get()));
+  const std::vector<size_t> b = part_starts(s, cuts);
+  if (const std::vector<size_t> wide = wide_parts(s, b); !wide.empty())
+    cuts = split_parts(s, cuts, b, wide, width());
   Split out = family_from_cuts(P, candidate, s, cuts);
   if (out.score == 0)
-    out = family_from_cuts(P, candidate, s,
-                           density_cuts(s, station_noise(P, candidate, neighbours.get())));
+    out = family_from_cuts(P, candidate, s, density_cuts(s, width()));
   return out;
 }
 
