@@ -415,13 +415,6 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
     c.far = fit_sparse(pts, index, rule.min_points, parent, f);
 }
 
-// The median of sqrt(area per point): the point spacing.
-double median_spacing(const Eigen::VectorXd& area) {
-  std::vector<double> a(area.data(), area.data() + area.size());
-  std::nth_element(a.begin(), a.begin() + std::ptrdiff_t(a.size() / 2), a.end());
-  return std::sqrt(a[a.size() / 2]);
-}
-
 // Z-order (Morton) key of a leaf's cell at the resolution of level `depth` (<= 21): leaves sorted
 // by it lie near their neighbours in memory, which the evaluator's loops over nearby balls like.
 std::uint64_t morton(const LocalFit& f, int depth) {
@@ -454,13 +447,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   constexpr int kAreaNeighbours = 8;
   const Eigen::VectorXd area =
       detail::point_areas(c.points, index.knn_all(kAreaNeighbours, o.threads));
-  // Outward normals make sum a_i n_i . (p_i - centre) = 3 x the volume > 0 (divergence theorem,
-  // for any closed surface and any centre); inward normals are flipped before fitting.
-  const Vector3d centre = c.points.colwise().mean();
-  double flux = 0;
-  for (Index i = 0; i < c.points.rows(); ++i)
-    flux += area(i) * c.normals.row(i).dot(c.points.row(i) - centre.transpose());
-  info.flipped = flux < 0;
+  info.flipped = detail::normals_inward(c.points, c.normals, area); // flipped before fitting
   const Eigen::MatrixX3d N = info.flipped ? Eigen::MatrixX3d(-c.normals) : c.normals;
   const detail::WindingNumber winding(c.points, N, area);
   const Points pts{c.points, N, area, winding};
@@ -477,7 +464,7 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   info.noise_estimated = !(o.noise > 0);
   info.noise = o.noise > 0 ? o.noise : estimate_noise(c.points);
   const double sigma = std::max(info.noise, kSigmaFloor * m.size);
-  info.spacing = median_spacing(area);
+  info.spacing = detail::median_spacing(area);
   m.spacing = info.spacing;
   if (o.noise_aware || o.acceptance_per_rho > 0 || o.min_points == 0)
     info.scan_noise = o.noise > 0 ? o.noise : estimate_scan_noise(c.points);

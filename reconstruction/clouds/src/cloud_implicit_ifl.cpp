@@ -1,4 +1,4 @@
-// Point-cloud implicits <-> .ifl blocks of kind cloud_pu (cloud_implicit_ifl.h).
+// Point-cloud implicits <-> .ifl blocks of kinds cloud_pu and cloud_hrbf (cloud_implicit_ifl.h).
 #include "interlin/reconstruction/clouds/cloud_implicit_ifl.h"
 
 #include "interlin/interflatation/models/ifl_codecs.h"
@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <utility>
 
 namespace interlin {
 
@@ -147,6 +148,63 @@ CloudImplicit cloud_implicit_from_ifl(const IflBlock& b) {
   return m;
 }
 
+IflBlock to_ifl(const HermiteRbf& m) {
+  const long n = static_cast<long>(m.points.rows());
+  auto flat = [n](const Eigen::MatrixX3d& A) { // row-major #P by 3
+    std::vector<double> v(static_cast<size_t>(3 * n));
+    for (long i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a)
+        v[static_cast<size_t>(3 * i + a)] = A(i, a);
+    return v;
+  };
+  IflBlock b;
+  b.kind = "cloud_hrbf";
+  b.name = "model";
+  b.set("version", 1);
+  set_box(b, "box", m.box);
+  b.set_f64("centre", {3}, {m.centre(0), m.centre(1), m.centre(2)});
+  b.set("scale", m.scale);
+  b.set("spacing", m.spacing);
+  b.set_f64("points", {n, 3}, flat(m.points));
+  b.set_f64("a", {n}, std::vector<double>(m.a.data(), m.a.data() + n));
+  b.set_f64("b", {n, 3}, flat(m.b));
+  b.set_f64("linear", {4}, {m.c, m.g(0), m.g(1), m.g(2)});
+  return b;
+}
+
+HermiteRbf hermite_rbf_from_ifl(const IflBlock& b) {
+  b.expect("cloud_hrbf", 1);
+  HermiteRbf m;
+  m.box = box_from_block(b, "box");
+  const std::vector<double>& c = b.f64("centre", {3});
+  m.scale = b.number("scale");
+  m.spacing = b.number("spacing");
+  if (!(m.scale > 0) || !(m.spacing >= 0))
+    b.fail("needs scale > 0 and spacing >= 0");
+  const std::vector<double>& a = b.f64("a", {-1});
+  const long n = static_cast<long>(a.size());
+  if (n < 4)
+    b.fail("array 'a': fewer than 4 centres");
+  const std::vector<double>& p = b.f64("points", {n, 3});
+  const std::vector<double>& beta = b.f64("b", {n, 3});
+  const std::vector<double>& lin = b.f64("linear", {4});
+  for (const auto& [name, v] :
+       {std::pair{"centre", &c}, {"points", &p}, {"a", &a}, {"b", &beta}, {"linear", &lin}})
+    require_finite(b, name, *v);
+  m.centre = Eigen::Vector3d(c[0], c[1], c[2]);
+  m.points.resize(n, 3);
+  m.b.resize(n, 3);
+  m.a = Eigen::Map<const Eigen::VectorXd>(a.data(), n);
+  for (long i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) {
+      m.points(i, k) = p[static_cast<size_t>(3 * i + k)];
+      m.b(i, k) = beta[static_cast<size_t>(3 * i + k)];
+    }
+  m.c = lin[0];
+  m.g = Eigen::Vector3d(lin[1], lin[2], lin[3]);
+  return m;
+}
+
 void register_cloud_ifl_kind() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -157,6 +215,9 @@ void register_cloud_ifl_kind() {
       } catch (const std::invalid_argument& e) {
         b.fail(e.what());
       }
+    });
+    register_ifl_kind("cloud_hrbf", [](const IflBlock& b, const std::string&) {
+      return hermite_rbf_function(std::make_shared<const HermiteRbf>(hermite_rbf_from_ifl(b)));
     });
   });
 }

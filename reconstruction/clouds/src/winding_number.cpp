@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <vector>
 
 namespace interlin::detail {
 
@@ -126,6 +127,21 @@ double WindingNumber::operator()(const Eigen::Vector3d& q) const {
     }
   }
   return w / (4 * M_PI);
+}
+
+bool normals_inward(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+                    const Eigen::VectorXd& area) {
+  const Eigen::RowVector3d centre = P.colwise().mean();
+  double flux = 0;
+  for (Eigen::Index i = 0; i < P.rows(); ++i)
+    flux += area(i) * N.row(i).dot(P.row(i) - centre);
+  return flux < 0;
+}
+
+double median_spacing(const Eigen::VectorXd& area) {
+  std::vector<double> a(area.data(), area.data() + area.size());
+  std::nth_element(a.begin(), a.begin() + std::ptrdiff_t(a.size() / 2), a.end());
+  return std::sqrt(a[a.size() / 2]);
 }
 
 } // namespace interlin::detail

@@ -40,4 +40,13 @@ private:
 // (the disc through the k nearest points holds about k points' shares). k = 8.
 Eigen::VectorXd point_areas(const Eigen::MatrixX3d& P, const Eigen::MatrixXi& knn);
 
+// True when the normals N point into the body: outward normals make sum a_i n_i . (p_i - c) =
+// 3 x the volume > 0 for any closed surface and any centre c (divergence theorem; c: the
+// centroid, a: point_areas).
+bool normals_inward(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+                    const Eigen::VectorXd& area);
+
+// The median of sqrt(area per point): the point spacing.
+double median_spacing(const Eigen::VectorXd& area);
+
 } // namespace interlin::detail

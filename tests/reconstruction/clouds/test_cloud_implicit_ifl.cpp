@@ -1,11 +1,12 @@
-// Point-cloud implicits in .ifl files (kind cloud_pu): written and read back, a model evaluates
-// to the same doubles (value and gradient) as the fitted one, through load_ifl like any model;
-// blocks that break the kind's rules are refused with the block's InputError.
+// Point-cloud implicits in .ifl files (kinds cloud_pu and cloud_hrbf): written and read back, a
+// model evaluates to the same doubles (value and gradient) as the fitted one, through load_ifl like
+// any model; blocks that break the kind's rules are refused with the block's InputError.
 
 #include "interlin/interflatation/input_error.h"
 #include "interlin/interflatation/load_implicit.h"
 #include "interlin/interflatation/models/ifl_registry.h"
 #include "interlin/reconstruction/clouds/cloud_implicit_ifl.h"
+#include "interlin/reconstruction/clouds/hermite_rbf.h"
 
 #include "support/test_clouds.h"
 #include "support/test_support.h"
@@ -107,4 +108,50 @@ TEST_CASE("cloud .ifl: blocks that break the kind's rules are refused", "[clouds
   b = good;
   b.numbers.erase("spacing");
   CHECK(load_ifl_model(b, "x.ifl").sample_spacing == 0);
+}
+
+TEST_CASE("cloud .ifl: the Hermite RBF read back exactly, bad blocks refused", "[clouds][ifl]") {
+  register_cloud_ifl_kind();
+  test::TempDir d("hrbfifl");
+  const PointCloud c = test::sample_shape({test::Shape::torus}, 300, 0.001, 33);
+  const auto fitted = std::make_shared<const HermiteRbf>(fit_hermite_rbf(c));
+  const ImplicitFunction F = hermite_rbf_function(fitted);
+  const std::string path = d / "r.ifl";
+  std::ofstream(path, std::ios::binary) << text(to_ifl(*fitted));
+  const ImplicitFunction G = load_implicit(path);
+  CHECK(G.box.min() == F.box.min());
+  CHECK(G.box.max() == F.box.max());
+  CHECK(G.sample_spacing == fitted->spacing);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> U(-2, 2);
+  Points3 P(200, 3);
+  for (int i = 0; i < 200; ++i)
+    P.row(i) = i < 100 ? c.points.row(i * 3) : Eigen::RowVector3d(U(rng), U(rng), U(rng));
+  Eigen::VectorXd f(200), g(200);
+  Points3 Df(200, 3), Dg(200, 3);
+  F.gradient(P, f, Df);
+  G.gradient(P, g, Dg);
+  CHECK(f == g); // bit-identical: 17 significant digits give the doubles back
+  CHECK(Df == Dg);
+  CHECK(text(to_ifl(hermite_rbf_from_ifl(read_ifl(path)))) == text(to_ifl(*fitted)));
+
+  const IflBlock good = to_ifl(*fitted);
+  auto refused = [&](const IflBlock& b, const std::string& what) {
+    INFO(what);
+    CHECK_THROWS_AS(load_ifl_model(b, "x.ifl"), InputError);
+    CHECK_THROWS_WITH(load_ifl_model(b, "x.ifl"), Catch::Contains(what));
+  };
+  IflBlock b = good;
+  b.arrays["b"].f64[7] = std::nan("");
+  refused(b, "not finite");
+  b = good;
+  b.arrays["points"].dims = {299, 3};
+  refused(b, "points");
+  b = good;
+  b.numbers["scale"] = 0;
+  refused(b, "scale > 0");
+  b = good;
+  b.arrays["a"].f64.resize(3);
+  b.arrays["a"].dims = {3};
+  refused(b, "fewer than 4 centres");
 }
