@@ -42,8 +42,10 @@
 #include "poisson_baselines.h"
 #include "surface_distance.h"
 
+#include "interlin/reconstruction/clouds/choose_cloud_fit.h"
 #include "interlin/reconstruction/clouds/cloud_implicit.h"
 #include "interlin/reconstruction/clouds/fit_sliced_scan.h"
+#include "interlin/reconstruction/clouds/hermite_rbf.h"
 #include "interlin/reconstruction/clouds/noise_level.h"
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
@@ -86,7 +88,7 @@ std::string fixed(double x) {
 }
 
 struct Method {
-  enum Kind { interlin, pcl, open3d, sectioned } kind;
+  enum Kind { interlin, pcl, open3d, sectioned, hrbf } kind;
   int depth = 8;      // Poisson octree depth
   int resolution = 0; // interlin: grid cells along the box's longest side; 0: default_mesh_cell
   double cells_per_spacing = 2; // ... with resolution 0
@@ -99,6 +101,8 @@ struct Method {
              ")" + (fit.empty() ? "" : " [" + fit + "]");
     if (kind == sectioned)
       return "interlin sectioned (slices -> loft)";
+    if (kind == hrbf)
+      return "interlin Hermite RBF (cell spacing / " + fixed(cells_per_spacing) + ")";
     return std::string(kind == pcl ? "PCL Poisson" : "Open3D Poisson") + " (depth " +
            std::to_string(depth) + ")";
   }
@@ -214,13 +218,32 @@ void reconstruct_sectioned(const PointCloud& c, int threads, Reconstruction& r) 
   r.info.noise = fit.noise;
 }
 
-Reconstruction reconstruct(const Method& m, const PointCloud& c, int threads) {
+// interlin's default for a cloud: the Hermite RBF when the cloud is sparse, its normals are
+// measured and the hold-out prefers it (choose_cloud_fit), as `interlin implicit --fit auto`
+// does.
+bool hermite_by_default(const PointCloud& c, bool normals_measured, int threads) {
+  if (c.points.rows() > kHermiteRbfAutoPoints || !normals_measured)
+    return false;
+  CloudFitOptions o;
+  o.threads = threads;
+  return choose_cloud_fit(c, o).hermite;
+}
+
+Reconstruction reconstruct(const Method& m, const PointCloud& c, bool normals_measured,
+                           int threads) {
   Reconstruction r;
-  if (m.kind == Method::interlin) {
-    CloudFitOptions o = fit_options(m.fit, &c.points);
-    o.threads = threads;
-    auto model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, o, &r.info));
-    r.implicit = cloud_implicit_function(model);
+  const bool hermite =
+      m.kind == Method::hrbf || (m.kind == Method::interlin && m.fit.empty() && m.resolution == 0 &&
+                                 hermite_by_default(c, normals_measured, threads));
+  if (hermite || m.kind == Method::interlin) {
+    if (hermite) {
+      r.implicit = hermite_rbf_function(std::make_shared<const HermiteRbf>(fit_hermite_rbf(c)));
+    } else {
+      CloudFitOptions o = fit_options(m.fit, &c.points);
+      o.threads = threads;
+      r.implicit = cloud_implicit_function(
+          std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, o, &r.info)));
+    }
     ImplicitMeshOptions mo;
     mo.resolution = m.resolution;
     if (m.resolution == 0)
@@ -349,7 +372,7 @@ void holdout(const Method& m, const CloudCase& c, int threads, Result& out) {
     PointCloud t;
     t.points = c.cloud.points(train, Eigen::all);
     t.normals = c.cloud.normals(train, Eigen::all);
-    const Reconstruction r = reconstruct(m, t, threads);
+    const Reconstruction r = reconstruct(m, t, c.normals_measured, threads);
     const Eigen::VectorXd d = MeshDistance(r.V, r.F)(c.cloud.points(test, Eigen::all));
     sum += d.sum();
     mx = std::max(mx, d.maxCoeff());
@@ -377,7 +400,7 @@ Result run_child(const Method& m, const CloudCase& c, int threads) {
   try {
     const long before = status_kb("VmRSS:");
     const auto t0 = std::chrono::steady_clock::now();
-    const Reconstruction r = reconstruct(m, c.cloud, threads);
+    const Reconstruction r = reconstruct(m, c.cloud, c.normals_measured, threads);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.peak_mb = double(status_kb("VmHWM:") - before) / 1024.0;
     if (const char* dir = std::getenv(kSaveVariable))
@@ -567,7 +590,7 @@ Options parse_options(int argc, char** argv) {
     } else
       throw UsageError("unknown option " + a);
   }
-  check_names("--methods", o.methods, {"interlin", "pcl", "open3d", "none"});
+  check_names("--methods", o.methods, {"interlin", "hrbf", "pcl", "open3d", "none"});
   return o;
 }
 
@@ -680,6 +703,8 @@ int main(int argc, char** argv) {
       for (const std::string& fit : o.fits)
         methods.push_back({Method::interlin, 0, resolution, o.cells_per_spacing, fit});
     }
+    if (run_method("hrbf"))
+      methods.push_back({Method::hrbf, 0, 0, o.cells_per_spacing, ""});
     for (int d : depths) {
       if (run_method("pcl"))
         methods.push_back({Method::pcl, d, 0, 0, ""});

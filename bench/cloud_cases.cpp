@@ -222,6 +222,7 @@ CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed, No
   if (normals == Normals::exact) {
     c.cloud = scan;
     c.inward = 0;
+    c.normals_measured = true;
   } else {
     c.cloud = prepared(c.name, scan, c.inward, normals == Normals::oriented);
   }
@@ -333,6 +334,7 @@ CloudCase bunny() {
   CloudPrepOptions o;
   o.thin_walls = thin_walls;
   c.cloud = prepare_cloud(path, read_point_cloud(path), o);
+  c.normals_measured = true; // the file's (PCL's, from the full-resolution scan), re-oriented
   return c;
 }
 
@@ -358,10 +360,10 @@ void save_case(const CloudCase& c, const std::string& path) {
   const long sizes[4] = {long(c.cloud.points.rows()), long(c.cloud.normals.rows()),
                          long(c.truth.V.rows()), long(c.truth.F.rows())};
   const double reals[5] = {c.truth.diagonal, c.truth.sag, c.noise, c.station_lo, c.station_hi};
-  const int kind = static_cast<int>(c.stations);
+  const int kind[2] = {static_cast<int>(c.stations), c.normals_measured ? 1 : 0};
   put(out, sizes, 4);
   put(out, reals, 5);
-  put(out, &kind, 1);
+  put(out, kind, 2);
   for (const std::string& s : {c.name, c.description}) {
     const long n = long(s.size());
     put(out, &n, 1);
@@ -379,10 +381,10 @@ CloudCase load_case(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   long sizes[4];
   double reals[5];
-  int kind = 0;
+  int kind[2] = {0, 0};
   get(in, sizes, 4);
   get(in, reals, 5);
-  get(in, &kind, 1);
+  get(in, kind, 2);
   CloudCase c;
   for (std::string* s : {&c.name, &c.description}) {
     long n = 0;
@@ -403,7 +405,8 @@ CloudCase load_case(const std::string& path) {
   c.noise = reals[2];
   c.station_lo = reals[3];
   c.station_hi = reals[4];
-  c.stations = static_cast<CloudCase::Station>(kind);
+  c.stations = static_cast<CloudCase::Station>(kind[0]);
+  c.normals_measured = kind[1] == 1;
   if (!in)
     throw std::runtime_error("cannot read " + path);
   return c;

@@ -23,7 +23,10 @@ struct TruthMesh {
 
 struct CloudCase {
   std::string name, description;
-  PointCloud cloud;         // points and the normals every method is given
+  PointCloud cloud; // points and the normals every method is given
+  // The normals are measured (a file's, or the truth's), not estimated from the points: only
+  // then does interlin's automatic fit (`interlin implicit --fit auto`) consider the Hermite RBF.
+  bool normals_measured = false;
   TruthMesh truth;          // empty for the bunny
   double noise = 0;         // sigma of the simulated noise (0 for the bunny: unknown)
   Eigen::Index inward = -1; // normals pointing against the true ones (-1: unknown; not saved)

@@ -64,6 +64,11 @@ Point clouds:
   --outlier-ratio R      ... removing points beyond R standard deviations (default 3)
   --voxel LEAF           voxel-grid downsampling with cubes of side LEAF (default 0: off)
   --normal-neighbours K  neighbours of the normal estimation (default 16)
+  --fit METHOD           unstructured fit: auto (default: for clouds of at most 500 points
+                         with normals in the file, the one of pu and hrbf whose five-fold
+                         hold-out is closer; else pu), pu (partition of unity of local fits,
+                         any size), hrbf (Hermite RBF interpolant of the points and their
+                         normals, at most 1000 points)
   --max-depth D          unstructured fit: octree levels (default 12)
   --span-smoothing MODE  sectioned scans: auto (default: the sections become isocurves of one
                          least-squares surface through all slices when Mallows' C_p prefers it),
@@ -83,6 +88,7 @@ Examples:
   interlin mesh blade.ifl -o blade.stl --resolution 256
   interlin implicit data/models/uav.rf -o uav.ifl --resolution 128
   interlin implicit data/clouds/bun0.pcd -o bunny.ifl
+  interlin implicit probe_points.csv -o part.ifl --fit hrbf
   interlin implicit scan.xyz -o blade.ifl --slices planar --noise 0.005
 )";
 
@@ -157,9 +163,9 @@ void refuse(const ParsedArgs& a, const std::vector<const char*>& options, const 
 }
 
 const std::vector<const char*> kCloudOptions = {
-    "slices",        "noise", "normals",           "outliers",
-    "outlier-ratio", "voxel", "normal-neighbours", "max-depth",
-    "span-smoothing"};
+    "slices",         "noise", "normals",           "outliers",
+    "outlier-ratio",  "voxel", "normal-neighbours", "max-depth",
+    "span-smoothing", "fit"};
 
 void sections_job(const ParsedArgs& a, const std::string& input, const std::string& output,
                   const Progress& progress) {
@@ -250,6 +256,7 @@ int run_implicit(int argc, const char* const* argv) {
                       {"voxel", 0, true, false},
                       {"normal-neighbours", 0, true, false},
                       {"max-depth", 0, true, false},
+                      {"fit", 0, true, false},
                       {"span-smoothing", 0, true, false},
                       {"max-grid-nodes", 0, true, false}},
                      implicit_main);

@@ -1,9 +1,11 @@
 // interlin implicit SCAN.{pcd,ply,xyz,csv,...}: a point cloud -> .ifl. A sectioned scan (points
 // on parallel planes or coaxial cylinders) becomes fitted sections -> loft -> the section body
 // of issue 10 (exact on the loft through the fitted sections); any other cloud the multi-level
-// partition of unity of local fits (cloud_implicit.h, kind cloud_pu).
+// partition of unity of local fits (cloud_implicit.h, kind cloud_pu) or, for sparse clouds, the
+// Hermite RBF interpolant (hermite_rbf.h, kind cloud_hrbf; --fit).
 #include "implicit_jobs.h"
 
+#include "interlin/reconstruction/clouds/choose_cloud_fit.h"
 #include "interlin/reconstruction/clouds/cloud_implicit.h"
 #include "interlin/reconstruction/clouds/cloud_implicit_ifl.h"
 #include "interlin/reconstruction/clouds/fit_sliced_scan.h"
@@ -61,7 +63,7 @@ void unused(const ParsedArgs& a, const std::vector<const char*>& options, const 
 
 void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& family, double noise,
                SectionBodyOptions bo, const std::string& output, const Progress& progress) {
-  unused(a, {"max-depth"}, "it applies to the unstructured fit", progress);
+  unused(a, {"max-depth", "fit"}, "it applies to the unstructured fit", progress);
   SliceFitOptions so;
   so.noise = noise;
   so.threads = bo.threads;
@@ -98,17 +100,54 @@ void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& fami
   write_model(output, to_ifl(b.model));
 }
 
+// --fit: hrbf, pu, or auto: the hold-out's choice for clouds of at most kHermiteRbfAutoPoints
+// points whose normals come from the file (the interpolant reproduces the normals, and normals
+// estimated from a sparse cloud misled the hold-out on 3 of 8 sparse clouds, docs/benchmarks.md).
+bool use_hermite_rbf(const std::string& input, const PointCloud& c, const std::string& fit,
+                     bool normals_estimated, const CloudFitOptions& fo, const Progress& progress) {
+  if (fit == "hrbf") {
+    if (c.points.rows() > kHermiteRbfMaxPoints)
+      throw_input_error(input, 0,
+                        "--fit hrbf takes at most " + std::to_string(kHermiteRbfMaxPoints) +
+                            " points, the cloud has " + std::to_string(c.points.rows()) +
+                            " (use --fit pu or --voxel to thin it)");
+    return true;
+  }
+  if (fit == "pu" || c.points.rows() > kHermiteRbfAutoPoints || normals_estimated)
+    return false;
+  progress("choosing the fit: five-fold hold-out of the partition of unity and the Hermite RBF");
+  const CloudFitChoice choice = choose_cloud_fit(c, fo);
+  std::cout << "  choice       hold-out mean |F| / |grad F|: partition of unity "
+            << fmt(choice.holdout_pu, 3) << ", Hermite RBF " << fmt(choice.holdout_hrbf, 3)
+            << " -> " << (choice.hermite ? "Hermite RBF" : "partition of unity") << "\n";
+  return choice.hermite;
+}
+
+void hermite(const std::string& input, const PointCloud& c, const std::string& output,
+             const Progress& progress) {
+  progress("fitting the Hermite RBF interpolant (" + std::to_string(c.points.rows()) + " points)");
+  HermiteRbfInfo info;
+  HermiteRbf model;
+  try {
+    model = fit_hermite_rbf(c, &info);
+  } catch (const std::invalid_argument& e) {
+    throw_input_error(input, 0, e.what());
+  }
+  std::cout << "  fit          Hermite RBF through " << c.points.rows()
+            << " points and their normals; point spacing " << fmt(info.spacing, 4)
+            << (info.flipped ? "; the normals pointed inward: F negated" : "") << "\n";
+  progress("writing " + output);
+  write_model(output, to_ifl(model));
+}
+
 void unstructured(const std::string& input, PointCloud& c, const CloudPrepOptions& po,
-                  CloudPrepReport& rep, CloudFitOptions fo, const std::string& output,
-                  const Progress& progress) {
+                  CloudPrepReport& rep, CloudFitOptions fo, const std::string& fit,
+                  const std::string& output, const Progress& progress) {
   std::vector<std::string> notes;
   cloud_normals(input, c, po, rep, &notes);
   if (!progress.quiet)
     for (const std::string& n : notes)
       std::cerr << "note: " << n << "\n";
-  CloudFitInfo info;
-  progress("fitting the partition of unity");
-  auto model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, fo, &info));
   std::cout << "  normals      "
             << (rep.normals_estimated    ? "estimated (PCL) and oriented"
                 : rep.normals_reoriented ? "from the file, re-oriented"
@@ -117,6 +156,13 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
                     ? "; " + std::to_string(rep.patches_flipped) + " turned by the winding number"
                     : std::string())
             << "\n";
+  if (use_hermite_rbf(input, c, fit, rep.normals_estimated, fo, progress)) {
+    hermite(input, c, output, progress);
+    return;
+  }
+  CloudFitInfo info;
+  progress("fitting the partition of unity");
+  auto model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, fo, &info));
   std::cout << "  noise        sigma = " << fmt(info.noise, 3)
             << (info.noise_estimated ? " (estimated from the points)" : " (given)")
             << "; point spacing " << fmt(info.spacing, 4) << "\n";
@@ -156,6 +202,9 @@ void cloud_job(const ParsedArgs& a, const std::string& input, const std::string&
   }
   if (const std::string m = a.get("span-smoothing", "auto"); m != "auto" && m != "off")
     throw UsageError("--span-smoothing: expected auto or off, got '" + m + "'");
+  const std::string fit = parse_choice("fit", a.get("fit", "auto"), {"auto", "pu", "hrbf"});
+  if (fit == "hrbf" && a.has("max-depth"))
+    throw UsageError("--max-depth applies to the partition of unity (not with --fit hrbf)");
   // Every option is checked before any work.
   const CloudPrepOptions po = prep_options(a, progress);
   CloudFitOptions fo;
@@ -191,7 +240,7 @@ void cloud_job(const ParsedArgs& a, const std::string& input, const std::string&
     std::cout << "  slices       none found: unstructured fit\n";
     unused(a, kBodyOptions, "no slices were found (they apply to sectioned scans)", progress);
   }
-  unstructured(input, c, po, rep, fo, output, progress);
+  unstructured(input, c, po, rep, fo, fit, output, progress);
 }
 
 } // namespace interlin::cli

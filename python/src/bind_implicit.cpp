@@ -9,6 +9,7 @@
 #include "implicit_input.h" // tools/: the CLI's rule for sections or cloud (.csv, .txt)
 
 #include "interlin/interflatation/models/ifl_registry.h"
+#include "interlin/reconstruction/clouds/choose_cloud_fit.h"
 #include "interlin/reconstruction/clouds/cloud_implicit_ifl.h"
 #include "interlin/reconstruction/clouds/fit_sliced_scan.h"
 #include "interlin/reconstruction/clouds/read_point_cloud.h"
@@ -97,6 +98,7 @@ struct CloudArgs {
   CloudPrepOptions prep;
   SliceKind slices = SliceKind::automatic;
   bool smooth_span = true;
+  std::string method = "auto"; // the unstructured fit: auto, pu or hrbf (as --fit)
   CloudFitOptions fit;
 };
 
@@ -126,18 +128,43 @@ ImplicitModel sliced_body(const PointCloud& c, const SliceFamily& family, const 
   return M;
 }
 
-// The unstructured fit: normals, then the partition of unity (kind cloud_pu).
-ImplicitModel cloud_pu(const std::string& path, PointCloud& c, const CloudArgs& a,
-                       CloudPrepReport& rep, std::vector<std::string>& notes) {
+// The unstructured fit: normals, then the partition of unity (kind cloud_pu) or the Hermite RBF
+// (kind cloud_hrbf) by the rule of `interlin implicit --fit` (cmd_implicit_cloud.cpp).
+ImplicitModel cloud_fit(const std::string& path, PointCloud& c, const CloudArgs& a,
+                        CloudPrepReport& rep, std::vector<std::string>& notes) {
   CloudFitInfo info;
   std::shared_ptr<const CloudImplicit> model;
+  std::shared_ptr<const HermiteRbf> rbf;
+  std::optional<CloudFitChoice> choice;
   {
     py::gil_scoped_release release;
     cloud_normals(path, c, a.prep, rep, &notes);
-    model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, a.fit, &info));
+    if (a.method == "auto" && c.points.rows() <= kHermiteRbfAutoPoints && !rep.normals_estimated)
+      choice = choose_cloud_fit(c, a.fit);
+    if (a.method == "hrbf" && c.points.rows() > kHermiteRbfMaxPoints)
+      throw_input_error(path, 0,
+                        "fit=\"hrbf\" takes at most " + std::to_string(kHermiteRbfMaxPoints) +
+                            " points, the cloud has " + std::to_string(c.points.rows()));
+    if (a.method == "hrbf" || (choice && choice->hermite))
+      rbf = std::make_shared<const HermiteRbf>(fit_hermite_rbf(c));
+    else
+      model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(c, a.fit, &info));
   }
-  return {"cloud_pu", to_ifl(*model, info.noise), cloud_implicit_function(model), std::nullopt, 0,
-          0,          cloud_fit_dict(info)};
+  py::dict report;
+  if (choice) {
+    report["holdout_pu"] = choice->holdout_pu;
+    report["holdout_hrbf"] = choice->holdout_hrbf;
+  }
+  if (rbf) {
+    report["fit"] = "hrbf";
+    return {"cloud_hrbf", to_ifl(*rbf), hermite_rbf_function(rbf), std::nullopt, 0, 0, report};
+  }
+  for (const auto& [key, value] : cloud_fit_dict(info))
+    report[key] = value;
+  report["fit"] = "pu";
+  return {
+      "cloud_pu", to_ifl(*model, info.noise), cloud_implicit_function(model), std::nullopt, 0, 0,
+      report};
 }
 
 // A point cloud (a file or a PointCloud) -> sectioned scan body or cloud_pu, as cloud_job.
@@ -161,7 +188,7 @@ ImplicitModel cloud_body(const py::object& input, const CloudArgs& a, const Sect
                       std::string("no ") + (a.slices == SliceKind::planar ? "planar" : "radial") +
                           " slices found; use slices=\"auto\" or \"none\"");
   ImplicitModel M = family.kind != SliceKind::none ? sliced_body(c, family, a, o)
-                                                   : cloud_pu(path, c, a, rep, notes);
+                                                   : cloud_fit(path, c, a, rep, notes);
   for (const auto& [key, value] : cloud_report_dict(rep))
     M.report[key] = value;
   M.report["notes"] = notes;
@@ -245,7 +272,8 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
          const py::object& span_degree, const std::string& align, const std::string& match,
          const py::object& param, const std::string& span, const std::string& slices, double noise,
          int max_depth, int outliers, double outlier_ratio, double voxel,
-         const std::string& normals, int normal_neighbours, const std::string& span_smoothing) {
+         const std::string& normals, int normal_neighbours, const std::string& span_smoothing,
+         const std::string& fit) {
         if (resolution < 8 || resolution > 1024)
           throw py::value_error("resolution: expected 8 .. 1024 grid cells");
         if (!(band.first > 0 && band.second > band.first))
@@ -296,6 +324,8 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
         a.fit.max_depth = max_depth;
         a.smooth_span =
             choice<bool>({{"auto", true}, {"off", false}}, span_smoothing, "span_smoothing");
+        a.method =
+            choice<std::string>({{"auto", "auto"}, {"pu", "pu"}, {"hrbf", "hrbf"}}, fit, "fit");
         return cloud_body(input, a, o);
       },
       py::arg("input"), py::arg("resolution") = 96, py::arg("band") = std::pair{1.5, 3.0},
@@ -307,13 +337,14 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
       py::arg("noise") = 0.0, py::arg("max_depth") = 12, py::arg("outliers") = 16,
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
       py::arg("normal_neighbours") = 16, py::arg("span_smoothing") = "auto",
+      py::arg("fit") = "auto",
       R"(The implicit equation of a body, as `interlin implicit` -> ImplicitModel.
 input            sections (a section file, a SectionSet, or a list of Section / (P, 3) arrays):
                  the body of the loft through every section, closed by ruled end caps; a point
                  cloud (a PointCloud, or a .pcd .ply .xyz .xyzn file; .csv and .txt by their
                  content, docs/formats.md "Sections or a cloud?"): a sectioned scan's fitted
                  sections lofted into a section body, any other cloud the partition-of-unity
-                 implicit (kind cloud_pu); or an R-function model path (.rf): its zero set,
+                 implicit (kind cloud_pu) or, sparse, the Hermite RBF (cloud_hrbf, see fit); or an R-function model path (.rf): its zero set,
                  normalised
 resolution       far-field grid cells along the longest side of the box (8 .. 1024)
 band             (inner, outer) blend band in grid cells: exact near field within inner
@@ -326,6 +357,11 @@ slices           clouds: "auto" (detect planar, then radial slices), "planar", "
                  (always the unstructured fit)
 noise            clouds: the scan noise sigma (0: estimated)
 max_depth        unstructured clouds: the octree's deepest level
+fit              unstructured clouds: "auto" (at most 500 points with the file's normals: the
+                 better of "pu" and "hrbf" by five-fold hold-out, report holdout_pu and
+                 holdout_hrbf; else "pu"), "pu" (partition of unity, kind cloud_pu), "hrbf"
+                 (Hermite RBF interpolant of points and normals, kind cloud_hrbf, at most 1000
+                 points); report["fit"] says which
 span_smoothing   sectioned scans: "auto" (the sections become isocurves of one least-squares
                  surface through all slices when Mallows' C_p prefers it; report span_control:
                  its control points along the span, 0 when not) or "off"

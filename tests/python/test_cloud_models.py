@@ -1,5 +1,5 @@
 """Point clouds -> implicit models from Python, as `interlin implicit SCAN`: the partition-of-unity
-implicit (kind cloud_pu) and sectioned scans (fitted sections -> section body); cloud .ifl files
+implicit (kind cloud_pu), the Hermite RBF of sparse clouds (cloud_hrbf) and sectioned scans (fitted sections -> section body); cloud .ifl files
 written by the CLI load with load_model (registered at import) and evaluate as `interlin eval`."""
 import os
 import subprocess
@@ -93,6 +93,27 @@ def test_implicit_of_a_point_cloud_object():
         interlin.implicit(interlin.PointCloud(P, N), slices="diagonal")
     with pytest.raises(ValueError, match="input 'scan.foo': unknown kind"):
         interlin.implicit("scan.foo")
+
+
+def test_sparse_cloud_with_normals_gets_the_hermite_rbf_as_the_cli(tmp_path):
+    # 300 points with their normals: the hold-out prefers the Hermite RBF (kind cloud_hrbf), as
+    # `interlin implicit` does; the interpolant is 0 at every point (to round-off) and the model
+    # written by the CLI evaluates to the same doubles.
+    P, N = sphere_cloud(300, 0.0)
+    path = str(tmp_path / "sparse.xyzn")
+    np.savetxt(path, np.hstack([P, N]), fmt="%.17g")
+    M = interlin.implicit(path, threads=1)
+    assert M.kind == "cloud_hrbf" and M.report["fit"] == "hrbf"
+    assert M.report["holdout_hrbf"] < 0.2 * M.report["holdout_pu"]
+    assert np.max(np.abs(M(P))) < 1e-9
+    ifl = str(tmp_path / "sparse.ifl")
+    assert "-> Hermite RBF" in cli("implicit", path, "-o", ifl, "--threads", "1", "-q")
+    Q = RNG.uniform(-1.3, 1.3, (200, 3))
+    assert np.array_equal(M(Q), interlin.load_model(ifl)(Q))
+    pu = interlin.implicit(path, threads=1, fit="pu")
+    assert pu.kind == "cloud_pu" and pu.report["fit"] == "pu" and "holdout_pu" not in pu.report
+    with pytest.raises(ValueError, match="fit"):
+        interlin.implicit(path, fit="rbf")
 
 
 def test_sectioned_scan_becomes_the_clis_section_body(tmp_path):

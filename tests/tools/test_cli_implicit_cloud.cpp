@@ -243,6 +243,58 @@ TEST_CASE("CLI implicit: .csv and .txt inputs are sections or clouds by a stated
   CHECK_FALSE(fs::exists(d / "a.ifl"));
 }
 
+TEST_CASE(
+    "CLI implicit: a sparse cloud with normals gets the hold-out's choice or the --fit asked for",
+    "[cli][implicit][clouds]") {
+  TempDir d("implicitsparse");
+  const SampledShape truth{Shape::torus};
+  const interlin::PointCloud c = sample_shape(truth, 300, 0, 46);
+  write_cloud(d / "sparse.csv", c);
+  Run r = run("implicit " + d / "sparse.csv -o " + d / "auto.ifl -q");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("choice       hold-out mean |F| / |grad F|: partition of "
+                                    "unity ") &&
+                        Catch::Contains("-> Hermite RBF") &&
+                        Catch::Contains("fit          Hermite RBF through 300 points"));
+  // the interpolant: F = 0 at every input point (to round-off of a 1204-unknown Cholesky and
+  // eval's 17 digits), the sign right at offsets of 0.05 along the exact normals
+  write_file(d / "on.csv", points_csv(c.points));
+  for (double v : eval_F(d / "auto.ifl", d / "on.csv"))
+    CHECK(std::abs(v) < 1e-9);
+  const interlin::PointCloud probe = sample_shape(truth, 300, 0, 47);
+  write_file(d / "in.csv", points_csv(probe.points - 0.05 * probe.normals));
+  write_file(d / "out.csv", points_csv(probe.points + 0.05 * probe.normals));
+  const std::vector<double> in = eval_F(d / "auto.ifl", d / "in.csv");
+  const std::vector<double> out = eval_F(d / "auto.ifl", d / "out.csv");
+  CHECK(std::count_if(in.begin(), in.end(), [](double v) { return v > 0; }) == 300);
+  CHECK(std::count_if(out.begin(), out.end(), [](double v) { return v < 0; }) == 300);
+  r = run("mesh " + d / "auto.ifl -o " + d / "auto.stl -q");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains(", watertight,"));
+  // --fit pu and --fit hrbf skip the choice
+  r = run("implicit " + d / "sparse.csv -o " + d / "pu.ifl -q --fit pu");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("octree       ") && !Catch::Contains("choice"));
+  r = run("implicit " + d / "sparse.csv -o " + d / "hrbf.ifl -q --fit hrbf");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out,
+             Catch::Contains("Hermite RBF through 300 points") && !Catch::Contains("choice"));
+  // the same points without normals: estimated normals are not interpolated by default
+  write_cloud(d / "bare.xyz", c);
+  r = run("implicit " + d / "bare.xyz -o " + d / "bare.ifl -q");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("octree       ") && !Catch::Contains("choice"));
+  // too many points for the interpolant, bad choices: one line, no output
+  write_cloud(d / "dense.csv", sample_shape(truth, 1200, 0, 48)); // some may go as outliers
+  expect_error(run("implicit " + d / "dense.csv -o " + d / "x.ifl -q --fit hrbf"), 1,
+               "dense.csv: --fit hrbf takes at most 1000 points, the cloud has 1");
+  expect_error(run("implicit " + d / "sparse.csv -o " + d / "x.ifl -q --fit rbf"), 2, "--fit");
+  expect_error(run("implicit " + d / "sparse.csv -o " + d / "x.ifl -q --fit hrbf --max-depth 4"), 2,
+               "--max-depth applies to the partition of unity");
+  CHECK_FALSE(fs::exists(d / "x.ifl"));
+}
+
 TEST_CASE("CLI implicit: bad clouds and options give one line, exit 1 or 2, no output",
           "[cli][implicit][clouds]") {
   TempDir d("implicitbad");
