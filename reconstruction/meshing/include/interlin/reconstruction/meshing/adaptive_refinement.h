@@ -17,9 +17,18 @@ namespace interlin {
 // Output:  #C indicator values in [0, 1]
 Eigen::VectorXd refinement_indicator(const Eigen::MatrixXi& C, const Eigen::VectorXd& values);
 
+// The seed code's refined nodes (digest §7.2 [C]): the vertices of the elements with indicator >
+// delta and of every element sharing a vertex with one.
+// Inputs:  C #C by k elements, indicator #C, delta, nodes #V
+// Output:  #V flags; flagged (optional): the number of elements with indicator > delta
+std::vector<char> refined_nodes(const Eigen::MatrixXi& C, const Eigen::VectorXd& indicator,
+                                double delta, long nodes, long* flagged = nullptr);
+
 struct RefinementReport {
   long flagged = 0;       // elements with indicator > delta
   long refined_nodes = 0; // vertices of the flagged elements and of their vertex neighbours
+                          // (hexahedra: after the closure) ...
+  long widened = 0;       // ... of which added by the closure (hexahedra; tetrahedra: 0)
   long split = 0;         // elements replaced by children
   long new_nodes = 0;     // edge midpoints added
   long projected = 0;     // of those, on boundary edges and moved onto F = 0 ...
