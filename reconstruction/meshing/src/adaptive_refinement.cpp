@@ -205,10 +205,11 @@ RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
     }
     std::vector<char> moved;
     project_by_gradient_walk(f, P, h, 100, {}, &moved);
-    rep.held = detail::place_projected(
+    rep.held_nodes = detail::place_projected(
         C, n0, project, P, moved, V, [&C](const Eigen::MatrixXd& W, long e) {
           return signed_volume6(W, {C(e, 0), C(e, 1), C(e, 2), C(e, 3)}) > 0;
         });
+    rep.held = long(rep.held_nodes.size());
     for (size_t r = 0; r < project.size(); ++r) {
       boundary[size_t(n0 + project[r])] = moved[r];
       rep.projected += moved[r];

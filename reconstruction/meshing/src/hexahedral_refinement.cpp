@@ -533,11 +533,12 @@ double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
 
 // New nodes on boundary facets (rows k of made.origin in `project`) onto F = 0: a gradient walk in
 // steps of a quarter of a third of the parent's mean edge, then each placed as far as folds none of
-// its elements (C: the children). Returns the number held short; flags the nodes on F = 0.
-long project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents,
+// its elements (C: the children). Flags the nodes that reached F = 0 or were held short of it
+// (rep.projected, rep.held, rep.held_nodes).
+void project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents,
                        const Eigen::MatrixXi& C, const NewNodes& made,
                        const std::vector<long>& project, Eigen::MatrixXd& V,
-                       std::vector<char>& boundary, long& projected) {
+                       std::vector<char>& boundary, RefinementReport& rep) {
   Eigen::MatrixXd P(long(project.size()), 3);
   Eigen::VectorXd h(P.rows());
   for (size_t r = 0; r < project.size(); ++r) {
@@ -547,14 +548,14 @@ long project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents
   std::vector<char> moved;
   project_by_gradient_walk(f, P, h, 100, {}, &moved);
   const Eigen::MatrixXi T = corner_table(8);
-  const long held = detail::place_projected(
+  rep.held_nodes = detail::place_projected(
       C, made.first, project, P, moved, V,
       [&C, &T](const Eigen::MatrixXd& W, long e) { return valid_hexahedron(W, C, e, T); });
+  rep.held = long(rep.held_nodes.size());
   for (size_t r = 0; r < project.size(); ++r) {
     boundary[size_t(made.first + project[r])] = moved[r];
-    projected += moved[r];
+    rep.projected += moved[r];
   }
-  return held;
 }
 
 } // namespace
@@ -624,7 +625,7 @@ RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
     for (int j = 0; j < 8; ++j)
       C(long(e), j) = out[e][size_t(j)];
   if (!project.empty())
-    rep.held = project_new_nodes(f, parents, C, made, project, V, boundary, rep.projected);
+    project_new_nodes(f, parents, C, made, project, V, boundary, rep);
   return rep;
 }
 

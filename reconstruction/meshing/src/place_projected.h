@@ -16,9 +16,10 @@ namespace interlin::detail {
 // curved boundary (a cut grid's sliver, a thin pillow) can make the full step fold it.
 // Returns the nodes held short of F = 0.
 template <class Valid>
-long place_projected(const Eigen::MatrixXi& C, long n0, const std::vector<long>& project,
-                     const Eigen::MatrixXd& P, const std::vector<char>& moved, Eigen::MatrixXd& V,
-                     const Valid& valid) {
+std::vector<long> place_projected(const Eigen::MatrixXi& C, long n0,
+                                  const std::vector<long>& project, const Eigen::MatrixXd& P,
+                                  const std::vector<char>& moved, Eigen::MatrixXd& V,
+                                  const Valid& valid) {
   constexpr int kHalvings = 10;
   std::vector<std::vector<long>> star(project.size());
   std::vector<long> row(size_t(V.rows() - n0), -1);
@@ -28,7 +29,7 @@ long place_projected(const Eigen::MatrixXi& C, long n0, const std::vector<long>&
     for (long j = 0; j < C.cols(); ++j)
       if (C(e, j) >= n0 && row[size_t(C(e, j) - n0)] >= 0)
         star[size_t(row[size_t(C(e, j) - n0)])].push_back(e);
-  long held = 0;
+  std::vector<long> held;
   for (size_t r = 0; r < project.size(); ++r) {
     if (!moved[r])
       continue;
@@ -44,7 +45,7 @@ long place_projected(const Eigen::MatrixXi& C, long n0, const std::vector<long>&
         break;
     }
     if (s < 1) {
-      ++held;
+      held.push_back(n);
       if (s < std::ldexp(1.0, -kHalvings))
         V.row(n) = start;
     }

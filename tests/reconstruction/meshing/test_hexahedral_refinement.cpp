@@ -2,6 +2,7 @@
 // full) on a cube, a parallelepiped and a general hexahedron; the closure on random refined-node
 // sets of a structured grid (conforming, volume and boundary area kept, nothing inverted); the
 // indicator's worked value; the adaptive loop on a front; new boundary nodes on F = 0.
+#include "interlin/reconstruction/meshing/boundary_mesh.h"
 #include "interlin/reconstruction/meshing/hexahedral_refinement.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/meshing/volume_mesh.h"
@@ -347,6 +348,62 @@ TEST_CASE("refine_hexahedra: new boundary nodes go onto F = 0 (sphere, default h
   for (long i = 0; i < B.size(); ++i)
     unflagged += !m.boundary[size_t(B.data()[i])];
   CHECK(unflagged <= 4 * reps[0].held); // only held nodes leave the boundary
+}
+
+TEST_CASE("adapt_hexahedra: body (11), default hexahedra, two passes at a peak near the boundary",
+          "[volume][adapt][hex]") {
+  // A field peaking at (0.75, 0.75, 0), inside the body a quarter from its face x = 1: the passes
+  // refine around it (locally: the far part of the mesh stays), new boundary nodes go onto F = 0
+  // as far as no element folds, and the volume moves towards body (11)'s 3.868844.
+  const ImplicitFunction f = test::body11_function();
+  VolumeMeshOptions o;
+  o.elements = VolumeElements::hexahedra;
+  o.resolution = 16;
+  o.threads = 1;
+  VolumeMesh m = volume_mesh(f, o);
+  // Elements with every vertex more than 1 (8 cells) from the peak.
+  auto far_elements = [](const Eigen::MatrixXd& V, const Eigen::MatrixXi& C) {
+    long far = 0;
+    for (long e = 0; e < C.rows(); ++e) {
+      bool all = true;
+      for (int j = 0; j < 8; ++j)
+        all = all && (V.row(C(e, j)) - Eigen::RowVector3d(0.75, 0.75, 0)).norm() > 1;
+      far += all;
+    }
+    return far;
+  };
+  const long elements0 = m.C.rows(), n0 = m.V.rows(), far0 = far_elements(m.V, m.C);
+  const double exact = 3.868844, before = volume_quality(m.V, m.C, 1).volume;
+  auto peak = [](const Eigen::MatrixXd& V, const Eigen::MatrixXi&) {
+    const Eigen::ArrayXd r2 = (V.col(0).array() - 0.75).square() +
+                              (V.col(1).array() - 0.75).square() + V.col(2).array().square();
+    return Eigen::VectorXd(1 / (0.05 + r2));
+  };
+  const std::vector<RefinementReport> reps = adapt_hexahedra(m.V, m.C, m.boundary, peak, 0.2, 2, f);
+  REQUIRE(reps.size() == 2);
+  long projected = 0, held = 0;
+  for (const RefinementReport& r : reps)
+    projected += r.projected, held += r.held;
+  INFO(elements0 << " -> " << m.C.rows() << " elements (" << far0 << " far from the peak, then "
+                 << far_elements(m.V, m.C) << "); projected " << projected << ", held " << held
+                 << "; widened " << reps[0].widened << ", " << reps[1].widened);
+  CHECK(m.C.rows() > 2 * elements0);
+  CHECK(far_elements(m.V, m.C) == far0); // local: the elements away from the peak stay whole
+  CHECK(projected > 100);
+  CHECK(held <= projected / 100);
+  CHECK(conformity(m.V, m.C).overused == 0);
+  const Eigen::MatrixXi B = boundary_facets(m.C);
+  CHECK(check_mesh(m.V, triangulate_quads(m.V, B)).boundary_edges == 0); // closed
+  const VolumeQuality q = volume_quality(m.V, m.C, 1);
+  CHECK(q.inverted == 0);
+  CHECK(std::abs(q.volume - exact) < std::abs(before - exact));
+  // New boundary nodes on F = 0 (to the root finder's tolerance) but those held short.
+  Eigen::VectorXd F(m.V.rows() - n0);
+  f.value(m.V.bottomRows(F.size()), F);
+  long off = 0;
+  for (long k = 0; k < F.size(); ++k)
+    off += m.boundary[size_t(n0 + k)] && std::abs(F(k)) > 1e-9;
+  CHECK(off <= held);
 }
 
 TEST_CASE("split_hexahedra: bad arguments", "[volume][adapt][hex]") {

@@ -33,7 +33,8 @@ struct RefinementReport {
   long new_nodes = 0;     // edge midpoints added
   long projected = 0;     // of those, on boundary edges and moved onto F = 0 ...
   long held = 0;          // ... of which held short of it (the largest of 1, 1/2, ... 1/1024 of the
-                          // way that inverts no element; 0: left on the edge)
+                          // way that inverts no element; 0: left on the edge) ...
+  std::vector<long> held_nodes; // ... these nodes (flagged boundary: they stay in smoothing)
 };
 
 // One pass of the seed code's 2-refinement of tetrahedra (digest §7.2 [C]): the elements with
