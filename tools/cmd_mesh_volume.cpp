@@ -289,6 +289,9 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
       std::cout << "; nodes added by the closure";
       for (const RefinementReport& p : passes)
         std::cout << " " << p.widened;
+      std::cout << "; children folded by nearly flat parents, untangled but";
+      for (const RefinementReport& p : passes)
+        std::cout << " " << p.folded << " (" << p.still_folded << ")";
     }
     std::cout << "; new boundary nodes on F = 0";
     for (const RefinementReport& p : passes)

@@ -103,7 +103,8 @@ py::dict refinement_dict(const RefinementReport& r) {
       field("refined_nodes", &RefinementReport::refined_nodes),
       field("split", &RefinementReport::split), field("new_nodes", &RefinementReport::new_nodes),
       field("projected", &RefinementReport::projected), field("held", &RefinementReport::held),
-      field("widened", &RefinementReport::widened));
+      field("widened", &RefinementReport::widened), field("folded", &RefinementReport::folded),
+      field("still_folded", &RefinementReport::still_folded));
 }
 
 // Elements (E, corners: 4 tetrahedra, 8 hexahedra) and boundary flags (N,) as the refinement
@@ -148,8 +149,8 @@ edges are none, one, a face's four or all twelve (templates of 5, 13, 27 childre
 nodes); new nodes on boundary facets projected onto F = 0 when the body f (Implicit) is given.
 V (N, 3), C (E, 8) positive hexahedra (VTK order), boundary (N,) bool, values (N,) ->
 (V (N', 3), C (E', 8) int32, boundary (N',), (values (N',): trilinear in the parents, report
-dict: flagged, refined_nodes, widened (added by the closure), split, new_nodes, projected,
-held)).)");
+dict: flagged, refined_nodes, widened (added by the closure), split, new_nodes, folded (children
+a nearly flat parent's map folds, untangled), still_folded (after), projected, held)).)");
   m.def(
       "adapt_hexahedra",
       [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,

@@ -8,6 +8,7 @@
 
 #include "corner_jacobian.h"
 #include "place_projected.h"
+#include "untangle.h"
 
 #include <algorithm>
 #include <array>
@@ -523,6 +524,24 @@ void append_nodes(const Eigen::MatrixXi& C, const NewNodes& made, Eigen::MatrixX
   }
 }
 
+// Children folded by a nearly flat parent's trilinear map (pillows at creases: the map folds
+// inside though its corners do not) untangled: the free nodes near them move, every node on the
+// boundary facets stays (rep.folded, rep.still_folded).
+void untangle_children(const Eigen::MatrixXi& C, Eigen::MatrixXd& V, RefinementReport& rep) {
+  const Eigen::MatrixXi T = corner_table(8);
+  for (long e = 0; e < C.rows(); ++e)
+    rep.folded += !valid_hexahedron(V, C, e, T);
+  if (rep.folded == 0)
+    return;
+  std::vector<char> fixed(size_t(V.rows()), 0);
+  const Eigen::MatrixXi B = boundary_facets(C);
+  for (long i = 0; i < B.size(); ++i)
+    fixed[size_t(B.data()[i])] = 1;
+  detail::untangle_hexahedra(C, fixed, 0, V);
+  for (long e = 0; e < C.rows(); ++e)
+    rep.still_folded += !valid_hexahedron(V, C, e, T);
+}
+
 // Mean edge length of element e.
 double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
   double sum = 0;
@@ -533,7 +552,7 @@ double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
 
 // New nodes on boundary facets (rows k of made.origin in `project`) onto F = 0: a gradient walk in
 // steps of a quarter of a third of the parent's mean edge, then each placed as far as folds none of
-// its elements (C: the children). Flags the nodes that reached F = 0 or were held short of it
+// its valid elements (C: the children). Flags the nodes that reached F = 0 or were held short of it
 // (rep.projected, rep.held, rep.held_nodes).
 void project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents,
                        const Eigen::MatrixXi& C, const NewNodes& made,
@@ -624,6 +643,7 @@ RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
   for (size_t e = 0; e < out.size(); ++e)
     for (int j = 0; j < 8; ++j)
       C(long(e), j) = out[e][size_t(j)];
+  untangle_children(C, V, rep);
   if (!project.empty())
     project_new_nodes(f, parents, C, made, project, V, boundary, rep);
   return rep;

@@ -9,10 +9,10 @@
 
 namespace interlin::detail {
 
-// Moves the new nodes n0 + project[r] (every element valid) to their projections P.row(r) where
-// `moved`, one at a time: the largest fraction 1, 1/2, ..., 1/1024 of the way that keeps every
-// element at the node valid (valid(V, e)), else none. Elements stay valid after each move (the
-// others' positions are the current ones), so none is inverted at the end; a small element at a
+// Moves the new nodes n0 + project[r] to their projections P.row(r) where `moved`, one at a time:
+// the largest fraction 1, 1/2, ..., 1/1024 of the way that keeps every element at the node that
+// is valid (valid(V, e)) valid, else none. Valid elements stay valid after each move (the others'
+// positions are the current ones), so no element is inverted by the moves; a small element at a
 // curved boundary (a cut grid's sliver, a thin pillow) can make the full step fold it.
 // Returns the nodes held short of F = 0.
 template <class Valid>
@@ -35,11 +35,15 @@ std::vector<long> place_projected(const Eigen::MatrixXi& C, long n0,
       continue;
     const long n = n0 + project[r];
     const Eigen::RowVector3d start = V.row(n), step = P.row(long(r)) - start;
+    std::vector<long> kept; // the elements to keep valid: an inverted one has no fold to avoid
+    for (long e : star[r])
+      if (valid(V, e))
+        kept.push_back(e);
     double s = 1;
     for (int k = 0; k <= kHalvings; ++k, s *= 0.5) {
       V.row(n) = start + s * step;
       bool ok = true;
-      for (long e : star[r])
+      for (long e : kept)
         ok = ok && valid(V, e);
       if (ok)
         break;

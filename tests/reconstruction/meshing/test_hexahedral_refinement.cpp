@@ -2,6 +2,7 @@
 // full) on a cube, a parallelepiped and a general hexahedron; the closure on random refined-node
 // sets of a structured grid (conforming, volume and boundary area kept, nothing inverted); the
 // indicator's worked value; the adaptive loop on a front; new boundary nodes on F = 0.
+#include "interlin/interflatation/load_implicit.h"
 #include "interlin/reconstruction/meshing/boundary_mesh.h"
 #include "interlin/reconstruction/meshing/hexahedral_refinement.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
@@ -404,6 +405,31 @@ TEST_CASE("adapt_hexahedra: body (11), default hexahedra, two passes at a peak n
   for (long k = 0; k < F.size(); ++k)
     off += m.boundary[size_t(n0 + k)] && std::abs(F(k)) > 1e-9;
   CHECK(off <= held);
+}
+
+TEST_CASE("adapt_hexahedra: the impeller's default hexahedra at cell 0.25, one pass on F",
+          "[volume][adapt][hex]") {
+  // The pillow layer is nearly flat at creases (min scaled Jacobian 2e-13): the trilinear map of
+  // such a parent folds some children, which the untangling opens; boundary nodes whose full
+  // projection would fold a thin child are held short (measured 5 % here).
+  const ImplicitFunction f = load_implicit(std::string(INTERLIN_DATA_DIR) + "/models/impeller.rf");
+  VolumeMeshOptions o;
+  o.elements = VolumeElements::hexahedra;
+  o.cell = 0.25;
+  VolumeMesh m = volume_mesh(f, o);
+  const long elements0 = m.C.rows();
+  Eigen::VectorXd values(m.V.rows());
+  f.value(m.V, values);
+  const RefinementReport r = refine_hexahedra(m.V, m.C, m.boundary, values, 0.2, f);
+  INFO(elements0 << " -> " << m.C.rows() << "; folded " << r.folded << " (" << r.still_folded
+                 << " left); projected " << r.projected << ", held " << r.held);
+  CHECK(m.C.rows() > 3 * elements0);
+  CHECK(r.folded > 0);
+  CHECK(r.still_folded == 0);
+  CHECK(r.held < 0.1 * r.projected);
+  const VolumeQuality q = volume_quality(m.V, m.C);
+  CHECK(q.inverted == 0);
+  CHECK(q.volume == Approx(1233.5).epsilon(0.001)); // Monte Carlo (docs/benchmarks.md)
 }
 
 TEST_CASE("split_hexahedra: bad arguments", "[volume][adapt][hex]") {

@@ -29,6 +29,9 @@ struct RefinementReport {
   long refined_nodes = 0; // vertices of the flagged elements and of their vertex neighbours
                           // (hexahedra: after the closure) ...
   long widened = 0;       // ... of which added by the closure (hexahedra; tetrahedra: 0)
+  long folded = 0;        // hexahedra: children the parent's trilinear map folds (nearly flat
+                          // parents) before untangling ...
+  long still_folded = 0;  // ... and after it
   long split = 0;         // elements replaced by children
   long new_nodes = 0;     // edge midpoints added
   long projected = 0;     // of those, on boundary edges and moved onto F = 0 ...
