@@ -289,9 +289,9 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
       std::cout << "; nodes added by the closure";
       for (const RefinementReport& p : passes)
         std::cout << " " << p.widened;
-      std::cout << "; children folded by nearly flat parents, untangled but";
+      std::cout << "; folded children untangled";
       for (const RefinementReport& p : passes)
-        std::cout << " " << p.folded << " (" << p.still_folded << ")";
+        std::cout << " " << p.folded - p.still_folded << " of " << p.folded;
     }
     std::cout << "; new boundary nodes on F = 0";
     for (const RefinementReport& p : passes)
