@@ -15,6 +15,7 @@
 #include <bit>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
@@ -524,6 +525,84 @@ void append_nodes(const Eigen::MatrixXi& C, const NewNodes& made, Eigen::MatrixX
   }
 }
 
+// One max-min step of node n (open_centre_folds): the best of the trial positions, if better.
+template <class Worst>
+void improve_node(long n, const std::vector<long>& start, const std::vector<long>& elements,
+                  const Eigen::MatrixXi& C, const Worst& worst_around, Eigen::MatrixXd& V) {
+  const Eigen::RowVector3d at = V.row(n);
+  Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+  double shortest = std::numeric_limits<double>::infinity();
+  long count = 0;
+  for (long k = start[size_t(n)]; k < start[size_t(n) + 1]; ++k)
+    for (int j = 0; j < 8; ++j) {
+      const long m = C(elements[size_t(k)], j);
+      if (m == n)
+        continue;
+      mean += V.row(m), ++count;
+      shortest = std::min(shortest, (V.row(m) - at).norm());
+    }
+  const Eigen::RowVector3d towards = (mean / double(count) - at).normalized();
+  const Eigen::RowVector3d directions[7] = {towards,
+                                            Eigen::RowVector3d::UnitX(),
+                                            -Eigen::RowVector3d::UnitX(),
+                                            Eigen::RowVector3d::UnitY(),
+                                            -Eigen::RowVector3d::UnitY(),
+                                            Eigen::RowVector3d::UnitZ(),
+                                            -Eigen::RowVector3d::UnitZ()};
+  double best = worst_around(n);
+  Eigen::RowVector3d best_at = at;
+  for (const Eigen::RowVector3d& d : directions)
+    for (double s : {0.125, 0.25, 0.5}) {
+      V.row(n) = at + s * shortest * d;
+      const double w = worst_around(n);
+      if (w > best)
+        best = w, best_at = V.row(n);
+    }
+  V.row(n) = best_at;
+}
+
+// The smaller of element e's corner and centre scaled Jacobians (volume_quality's figure).
+double min_scaled_jacobian(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e,
+                           const Eigen::MatrixXi& T) {
+  Eigen::Vector3d p[8];
+  corners_of(V, C, e, p);
+  const std::array<Eigen::Vector3d, 3> x = detail::centre_axes(p);
+  const double l = x[0].norm() * x[1].norm() * x[2].norm();
+  return std::min(detail::corner_scaled_jacobian(p, T).min_scaled,
+                  l > 0 ? x[0].cross(x[1]).dot(x[2]) / l : 0.0);
+}
+
+// Elements folded at their centre with every corner convex, which functional (15) does not see:
+// each free node of such an element tries steps of 1/8, 1/4 and 1/2 of its shortest edge along
+// the axes and towards its element neighbours' mean, keeping the one that most raises the worst
+// scaled Jacobian around it (local max-min search), for a few sweeps.
+void open_centre_folds(const Eigen::MatrixXi& C, const std::vector<char>& fixed,
+                       const Eigen::MatrixXi& T, Eigen::MatrixXd& V) {
+  constexpr int kSweeps = 10;
+  std::vector<long> start, elements;
+  node_elements(C, V.rows(), start, elements);
+  auto worst_around = [&](long n) {
+    double w = 1;
+    for (long k = start[size_t(n)]; k < start[size_t(n) + 1]; ++k)
+      w = std::min(w, min_scaled_jacobian(V, C, elements[size_t(k)], T));
+    return w;
+  };
+  for (int sweep = 0; sweep < kSweeps; ++sweep) {
+    std::vector<long> nodes; // the free nodes of folded elements
+    for (long e = 0; e < C.rows(); ++e)
+      if (!valid_hexahedron(V, C, e, T))
+        for (int j = 0; j < 8; ++j)
+          if (!fixed[size_t(C(e, j))])
+            nodes.push_back(C(e, j));
+    if (nodes.empty())
+      return;
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (long n : nodes)
+      improve_node(n, start, elements, C, worst_around, V);
+  }
+}
+
 // Children folded by a nearly flat parent's trilinear map (pillows at creases: the map folds
 // inside though its corners do not) untangled: the free nodes near them move, every node on the
 // boundary facets stays (rep.folded, rep.still_folded).
@@ -538,6 +617,7 @@ void untangle_children(const Eigen::MatrixXi& C, Eigen::MatrixXd& V, RefinementR
   for (long i = 0; i < B.size(); ++i)
     fixed[size_t(B.data()[i])] = 1;
   detail::untangle_hexahedra(C, fixed, 0, V);
+  open_centre_folds(C, fixed, T, V);
   for (long e = 0; e < C.rows(); ++e)
     rep.still_folded += !valid_hexahedron(V, C, e, T);
 }
