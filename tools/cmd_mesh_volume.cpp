@@ -150,18 +150,18 @@ std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunctio
   return reports;
 }
 
-// The largest |F| at the refined mesh's boundary nodes but those the refinement held short of
-// F = 0 (they stay flagged, so that smoothing keeps them).
-double max_boundary_f(const ImplicitFunction& f, const VolumeMesh& m,
-                      const std::vector<RefinementReport>& passes) {
-  std::vector<char> on = m.boundary;
+// The largest |F| at the boundary nodes the refinement added (from node `first` on) but those it
+// held short of F = 0 (they stay flagged, so that smoothing keeps them); 0 when there is none.
+double max_new_boundary_f(const ImplicitFunction& f, const VolumeMesh& m, long first,
+                          const std::vector<RefinementReport>& passes) {
+  std::vector<char> on(m.boundary.begin() + first, m.boundary.end());
   for (const RefinementReport& p : passes)
     for (long n : p.held_nodes)
-      on[size_t(n)] = 0;
+      on[size_t(n - first)] = 0;
   Points3 P(std::count(on.begin(), on.end(), char(1)), 3);
-  for (long v = 0, r = 0; v < m.V.rows(); ++v)
-    if (on[size_t(v)])
-      P.row(r++) = m.V.row(v);
+  for (size_t k = 0, r = 0; k < on.size(); ++k)
+    if (on[k])
+      P.row(long(r++)) = m.V.row(first + long(k));
   Eigen::VectorXd F(P.rows());
   f.value(P, F);
   return F.size() > 0 ? F.cwiseAbs().maxCoeff() : 0;
@@ -262,12 +262,13 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
                                : std::string("refine the grid with --resolution or --cell, or "
                                              "check the box")) +
                           ")");
-  const long before = m.C.rows();
+  const long before = m.C.rows(), first_new = m.V.rows();
   const std::vector<RefinementReport> passes = adapt_request.passes > 0
                                                    ? adapt(adapt_request, f, o, progress, m)
                                                    : std::vector<RefinementReport>{};
   if (!passes.empty())
-    info.max_boundary_f = max_boundary_f(f, m, passes);
+    info.max_boundary_f =
+        std::max(info.max_boundary_f, max_new_boundary_f(f, m, first_new, passes));
   progress("checking the elements");
   std::vector<ElementQuality> per;
   const VolumeQuality q = volume_quality(m.V, m.C, r.threads, &per);
