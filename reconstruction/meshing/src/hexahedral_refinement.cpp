@@ -630,6 +630,58 @@ double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
   return sum / 12;
 }
 
+// Held nodes given a second chance: the full step onto F = 0 (P, rows of `project`), then the
+// free nodes of its elements moved by the max-min search (improve_node, a few rounds); kept when
+// every element around the moved nodes is valid, else undone. Returns the nodes still held.
+std::vector<long> release_held(const std::vector<long>& held, const std::vector<long>& project,
+                               const Eigen::MatrixXd& P, long first, const Eigen::MatrixXi& C,
+                               const Eigen::MatrixXi& T, Eigen::MatrixXd& V) {
+  constexpr int kRounds = 5;
+  if (held.empty())
+    return held;
+  std::vector<long> row(size_t(V.rows() - first), -1), start, elements, still;
+  for (size_t r = 0; r < project.size(); ++r)
+    row[size_t(project[r])] = long(r);
+  node_elements(C, V.rows(), start, elements);
+  std::vector<char> fixed(size_t(V.rows()), 0);
+  const Eigen::MatrixXi B = boundary_facets(C);
+  for (long i = 0; i < B.size(); ++i)
+    fixed[size_t(B.data()[i])] = 1;
+  auto worst_around = [&](long n) {
+    double w = 1;
+    for (long k = start[size_t(n)]; k < start[size_t(n) + 1]; ++k)
+      w = std::min(w, min_scaled_jacobian(V, C, elements[size_t(k)], T));
+    return w;
+  };
+  for (long n : held) {
+    std::vector<long> nodes = {n}; // n, then the free nodes of its elements
+    for (long k = start[size_t(n)]; k < start[size_t(n) + 1]; ++k)
+      for (int j = 0; j < 8; ++j)
+        if (!fixed[size_t(C(elements[size_t(k)], j))])
+          nodes.push_back(C(elements[size_t(k)], j));
+    std::sort(nodes.begin() + 1, nodes.end());
+    nodes.erase(std::unique(nodes.begin() + 1, nodes.end()), nodes.end());
+    Eigen::MatrixXd saved(long(nodes.size()), 3);
+    for (size_t i = 0; i < nodes.size(); ++i)
+      saved.row(long(i)) = V.row(nodes[i]);
+    V.row(n) = P.row(row[size_t(n - first)]);
+    for (int round = 0; round < kRounds; ++round)
+      for (size_t i = 1; i < nodes.size(); ++i)
+        if (worst_around(nodes[i]) <= 0)
+          improve_node(nodes[i], start, elements, C, worst_around, V);
+    bool ok = true;
+    for (long m : nodes)
+      for (long k = start[size_t(m)]; ok && k < start[size_t(m) + 1]; ++k)
+        ok = valid_hexahedron(V, C, elements[size_t(k)], T);
+    if (ok)
+      continue;
+    for (size_t i = 0; i < nodes.size(); ++i)
+      V.row(nodes[i]) = saved.row(long(i));
+    still.push_back(n);
+  }
+  return still;
+}
+
 // New nodes on boundary facets (rows k of made.origin in `project`) onto F = 0: a gradient walk in
 // steps of a quarter of a third of the parent's mean edge, then each placed as far as folds none of
 // its valid elements (C: the children). Flags the nodes that reached F = 0 or were held short of it
@@ -647,9 +699,10 @@ void project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents
   std::vector<char> moved;
   project_by_gradient_walk(f, P, h, 100, {}, &moved);
   const Eigen::MatrixXi T = corner_table(8);
-  rep.held_nodes = detail::place_projected(
+  const std::vector<long> held = detail::place_projected(
       C, made.first, project, P, moved, V,
       [&C, &T](const Eigen::MatrixXd& W, long e) { return valid_hexahedron(W, C, e, T); });
+  rep.held_nodes = release_held(held, project, P, made.first, C, T, V);
   rep.held = long(rep.held_nodes.size());
   for (size_t r = 0; r < project.size(); ++r) {
     boundary[size_t(made.first + project[r])] = moved[r];

@@ -412,7 +412,7 @@ TEST_CASE("refine_hexahedra: the impeller's default hexahedra, one pass on F",
   // The pillow layer is nearly flat at creases (min scaled Jacobian 2e-13): the trilinear map of
   // such a parent folds some children (at their corners, or only at their centres), which the
   // untangling opens; boundary nodes whose full projection would fold a thin child are held
-  // short (measured 25 % at cell 0.5, whose pillows are flattest, 5 % at 0.25).
+  // short (measured 15 % at cell 0.5, whose pillows are flattest, 2 % at 0.25).
   const ImplicitFunction f = load_implicit(std::string(INTERLIN_DATA_DIR) + "/models/impeller.rf");
   const struct { double cell, held; } rows[] = {{0.5, 0.3}, {0.25, 0.1}};
   for (const auto& row : rows) {
