@@ -109,13 +109,13 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
                          for tetrahedra, F >= 0 for hexahedra): reproduces its published
                          counts
   --smooth K             K sweeps of functional (12) over the boundary nodes
-  --adapt N              tetrahedra: N passes of seed 003's adaptive refinement (§7.2):
-                         elements where the nodal quantity changes by more than
-                         --adapt-delta of its range, and their vertex neighbours, are split
-                         by conforming templates (2, 4 or 8 children; new boundary nodes
-                         onto F = 0), then the interior is smoothed again. Hexahedra: not
-                         offered (conforming hexahedral refinement needs transition
-                         templates)
+  --adapt N              N passes of seed 003's adaptive refinement (§7.2): elements where
+                         the nodal quantity changes by more than --adapt-delta of its range,
+                         and their vertex neighbours, are split by conforming templates
+                         (tetrahedra: 2, 4 or 8 children; hexahedra: 3-refinement, 5, 13 or
+                         27 children, the refined nodes widened until every element has a
+                         template; new boundary nodes onto F = 0), then the interior is
+                         smoothed again
   --adapt-delta D        indicator threshold in [0, 1) (default 0.2)
   --adapt-var NAME       the nodal quantity: variable NAME of the .rf model (a stress estimate,
                          a distance to a load, ...); default the body function F itself
@@ -129,6 +129,7 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
   interlin mesh data/models/body11.rf -o body11.msh -o body11.vtu --volume tet --resolution 40
   interlin mesh data/models/body11.rf -o body11.inp --volume hex --resolution 20 --seed-rule
   interlin mesh data/models/body11.rf -o body11.vtu --volume tet --resolution 20 --adapt 2
+  interlin mesh data/models/body11.rf -o body11.vtu --volume hex --resolution 20 --adapt 1
 )";
 
 namespace {

@@ -4,6 +4,7 @@
 #include "bindings.h"
 
 #include "interlin/reconstruction/meshing/adaptive_refinement.h"
+#include "interlin/reconstruction/meshing/hexahedral_refinement.h"
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
 #include "interlin/reconstruction/meshing/surface_mesh.h"
@@ -101,15 +102,20 @@ py::dict refinement_dict(const RefinementReport& r) {
       r, field("flagged", &RefinementReport::flagged),
       field("refined_nodes", &RefinementReport::refined_nodes),
       field("split", &RefinementReport::split), field("new_nodes", &RefinementReport::new_nodes),
-      field("projected", &RefinementReport::projected), field("held", &RefinementReport::held));
+      field("projected", &RefinementReport::projected), field("held", &RefinementReport::held),
+      field("widened", &RefinementReport::widened), field("folded", &RefinementReport::folded),
+      field("still_folded", &RefinementReport::still_folded));
 }
 
-// Tetrahedra (E, 4) and boundary flags (N,) as the refinement takes them; ValueError otherwise.
+// Elements (E, corners: 4 tetrahedra, 8 hexahedra) and boundary flags (N,) as the refinement
+// takes them; ValueError otherwise.
 std::vector<char> refinement_input(const MatrixXd& V, const MatrixXi& C,
-                                   const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary) {
+                                   const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
+                                   int corners = 4) {
   require_shape(V, 3, "V");
-  if (C.cols() != 4)
-    throw py::value_error("C: expected an (E, 4) array of tetrahedra");
+  if (C.cols() != corners)
+    throw py::value_error(corners == 4 ? "C: expected an (E, 4) array of tetrahedra"
+                                       : "C: expected an (E, 8) array of hexahedra");
   if (boundary.size() != V.rows())
     throw py::value_error("boundary: expected one flag per node of V");
   return std::vector<char>(boundary.data(), boundary.data() + boundary.size());
@@ -117,6 +123,60 @@ std::vector<char> refinement_input(const MatrixXd& V, const MatrixXi& C,
 
 py::tuple refined_mesh(MatrixXd V, MatrixXi C, const std::vector<char>& b, py::object extra) {
   return py::make_tuple(std::move(V), std::move(C), boundary_flags(b), std::move(extra));
+}
+
+// Seed 003's 3-refinement of hexahedra (hexahedral_refinement.h).
+void bind_hexahedral_refinement(py::module_& m) {
+  m.def(
+      "refine_hexahedra",
+      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
+         Eigen::VectorXd values, double delta, const std::optional<ImplicitFunction>& f) {
+        std::vector<char> b = refinement_input(V, C, boundary, 8);
+        RefinementReport r;
+        {
+          py::gil_scoped_release release;
+          r = refine_hexahedra(V, C, b, values, delta, f ? *f : ImplicitFunction{});
+        }
+        return refined_mesh(std::move(V), std::move(C), b,
+                            py::make_tuple(std::move(values), refinement_dict(r)));
+      },
+      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("values"), py::arg("delta"),
+      py::arg("f") = py::none(),
+      R"(One pass of seed 003's conforming 3-refinement of hexahedra (interlin mesh --volume hex
+--adapt): elements with indicator > delta, their vertex neighbours' vertices refined, an edge
+trisected iff both ends are refined; the refined nodes widened until every element's refined
+edges are none, one, a face's four or all twelve (templates of 5, 13, 27 children; no hanging
+nodes); new nodes on boundary facets projected onto F = 0 when the body f (Implicit) is given.
+V (N, 3), C (E, 8) positive hexahedra (VTK order), boundary (N,) bool, values (N,) ->
+(V (N', 3), C (E', 8) int32, boundary (N',), (values (N',): trilinear in the parents, report
+dict: flagged, refined_nodes, widened (added by the closure), split, new_nodes, folded (children
+a nearly flat parent's map folds, untangled), still_folded (after), projected, held)).)");
+  m.def(
+      "adapt_hexahedra",
+      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
+         const py::function& field, double delta, int iterations,
+         const std::optional<ImplicitFunction>& f) {
+        std::vector<char> b = refinement_input(V, C, boundary, 8);
+        const auto values = [&field](const MatrixXd& Vk, const MatrixXi& Ck) {
+          py::gil_scoped_acquire gil;
+          return field(Vk, Ck).cast<Eigen::VectorXd>();
+        };
+        std::vector<RefinementReport> reports;
+        {
+          py::gil_scoped_release release;
+          reports =
+              adapt_hexahedra(V, C, b, values, delta, iterations, f ? *f : ImplicitFunction{});
+        }
+        py::list passes;
+        for (const RefinementReport& r : reports)
+          passes.append(refinement_dict(r));
+        return refined_mesh(std::move(V), std::move(C), b, passes);
+      },
+      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("field"), py::arg("delta"),
+      py::arg("iterations"), py::arg("f") = py::none(),
+      R"(adapt_tetrahedra for hexahedra: `iterations` times field(V, C) -> (N,), then
+refine_hexahedra with delta; stops when nothing is flagged -> (V, C, boundary, [report dict per
+pass]).)");
 }
 
 void bind_refinement(py::module_& m) {
@@ -172,6 +232,7 @@ ends, report dict: flagged, refined_nodes, split, new_nodes, projected, held (of
       R"(Seed 003's adaptive loop: `iterations` times field(V, C) -> (N,) nodal values (an FE
 solution in the seed; any Python function of the current mesh), then refine_tetrahedra with
 delta; stops when nothing is flagged -> (V, C, boundary, [report dict per pass]).)");
+  bind_hexahedral_refinement(m);
 }
 
 void bind_volume_meshes(py::module_& m) {

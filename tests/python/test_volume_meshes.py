@@ -100,6 +100,55 @@ def test_adaptive_refinement_is_conforming_and_follows_the_field():
         interlin.adapt_tetrahedra(V, C, boundary, failing, 0.3, 1)
 
 
+def hex_faces_once(C):
+    """The quadrilaterals of hexahedra C (VTK order) used by one element only, as given."""
+    Q = np.vstack([C[:, f] for f in ([0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5],
+                                     [2, 3, 7, 6], [3, 0, 4, 7])])
+    u, first, n = np.unique(np.sort(Q, axis=1), axis=0, return_index=True, return_counts=True)
+    assert n.max() <= 2  # no face in three elements
+    return Q[first[n == 1]]
+
+
+def hex_grid(n):
+    """The unit cube as n^3 hexahedra (VTK order)."""
+    t = np.linspace(0, 1, n + 1)
+    V = np.stack(np.meshgrid(t, t, t, indexing="ij"), axis=-1).transpose(2, 1, 0, 3).reshape(-1, 3)
+    i, j, k = (a.ravel() for a in np.meshgrid(*(np.arange(n),) * 3, indexing="ij"))
+    node = lambda i, j, k: i + (n + 1) * (j + (n + 1) * k)  # noqa: E731
+    corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0),
+               (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+    C = np.stack([node(i + a, j + b, k + c) for a, b, c in corners], axis=1).astype(np.int32)
+    return V, C
+
+
+def test_hexahedral_refinement_is_conforming_and_follows_the_field():
+    front = lambda V, C: np.tanh(20 * (V[:, 0] - 0.5))  # noqa: E731
+    quads = lambda V, Q: area(V, Q[:, [0, 1, 2]]) + area(V, Q[:, [0, 2, 3]])  # noqa: E731
+    # A grid of the unit cube (planar faces): the children fill it exactly, the open faces are its
+    # 6 sides (a hanging node would open inner faces), the values x's front interpolated.
+    V, C = hex_grid(5)
+    V1, C1, b1, (values, report) = interlin.refine_hexahedra(V, C, np.zeros(len(V), bool),
+                                                             front(V, C), 0.3)
+    assert report["split"] > 0 and report["new_nodes"] == len(V1) - len(V)
+    assert report["widened"] >= 0 and report["refined_nodes"] > 0
+    q1 = interlin.volume_quality(V1, C1, threads=1)
+    assert q1["inverted"] == 0 and abs(q1["volume"] - 1) < 1e-12
+    assert abs(quads(V1, hex_faces_once(C1)) - 6) < 1e-12
+    assert np.allclose(values[:len(V)], front(V, C))
+    # Two passes on the default hexahedra of a ball: new boundary nodes on the sphere but those
+    # held short.
+    ball = rf.compile(rf.sphere(rf.x, rf.y, rf.z, 1.0), [[-1.2] * 3, [1.2] * 3])
+    V, C, B, boundary, info = interlin.mesh_volume(ball, "hex", resolution=8, threads=1)
+    V2, C2, b2, passes = interlin.adapt_hexahedra(V, C, boundary, front, 0.3, 2, ball)
+    assert len(passes) == 2 and sum(p["projected"] for p in passes) > 0
+    held = sum(p["held"] for p in passes)
+    assert np.sum(np.abs(np.linalg.norm(V2[b2], axis=1) - 1) > 1e-9) <= held
+    assert interlin.volume_quality(V2, C2, threads=1)["inverted"] == 0
+    assert np.all(b2[hex_faces_once(C2)])
+    with pytest.raises(ValueError, match=r"\(E, 8\) array of hexahedra"):
+        interlin.refine_hexahedra(V, C[:, :4], boundary, front(V, C), 0.3)
+
+
 def test_mesh_volume_lattice_choice():
     # Tetrahedra cut from the BCC lattice (the default) or the grid's Kuhn tetrahedra: both valid
     # with the boundary on F = 0; BCC's dihedral angles within the isosurface-stuffing bound

@@ -60,7 +60,7 @@ TEST_CASE("CLI mesh --volume: usage errors", "[cli][mesh][volume]") {
            "mesh " + m + " -o x.msh --volume tet --seed-rule --margin 0.1",  // exclusive
            "mesh " + m + " -o x.msh --volume hex --subboxes 2",              // surface only
            "mesh " + m + " -o x.msh --volume hex --sweeps -1",               // range
-           "mesh " + m + " -o x.msh --volume hex --adapt 1",                 // tetrahedra only
+           "mesh " + m + " -o x.msh --volume hex --adapt 0",                 // range
            "mesh " + m + " -o x.msh --volume tet --adapt 1 --adapt-delta 1", // range
            "mesh " + m + " -o x.msh --volume tet --adapt-delta 0.1",         // needs --adapt
            "mesh " + m + " -o x.msh --volume tet --lattice fcc",             // unknown lattice
@@ -157,6 +157,31 @@ TEST_CASE("CLI mesh --volume tet --adapt: refinement where the model's field var
   const Run bad = run(base + " --adapt 1 --adapt-var nosuch -q");
   CHECK(bad.status == 1);
   CHECK_THAT(bad.err, Catch::Contains("ball.rf"));
+}
+
+TEST_CASE("CLI mesh --volume hex --adapt: 3-refinement where the model's field varies",
+          "[cli][mesh][volume]") {
+  // The same peak on the default hexahedra: both passes split elements near it, the closure's
+  // widening is reported, the mesh stays valid and its new boundary nodes reach F = 0.
+  TempDir d("climeshvol");
+  write_file(d / "ball.rf", std::string(kBall) + "g = 1 / (0.05 + (x - 0.5)^2 + y^2 + z^2);\n");
+  const std::string base =
+      "mesh " + (d / "ball.rf") + " --volume hex --resolution 10 -o " + (d / "b.vtu");
+  const Run plain = run(base);
+  const Run adapted = run(base + " --adapt 2 --adapt-var g");
+  INFO(plain.out << adapted.out << adapted.err);
+  REQUIRE(plain.status == 0);
+  REQUIRE(adapted.status == 0);
+  CHECK_THAT(adapted.out,
+             Catch::Contains("adapted      2 passes") && Catch::Contains(" hexahedra (flagged") &&
+                 Catch::Contains("nodes added by the closure") && Catch::Contains("inverted 0"));
+  auto count = [](const std::string& out) {
+    const size_t at = out.find("elements     ");
+    return std::stol(out.substr(at + 13));
+  };
+  CHECK(count(adapted.out) > 2 * count(plain.out));
+  check_boundary_line(adapted.out);
+  CHECK(files_in(d) == 2u); // the model and the mesh
 }
 
 TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",

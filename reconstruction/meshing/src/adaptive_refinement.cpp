@@ -5,6 +5,8 @@
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 
+#include "place_projected.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -95,71 +97,30 @@ std::vector<std::pair<int, int>> facet_edges(const Eigen::MatrixXi& C) {
   return e;
 }
 
-// The refined nodes: vertices of the flagged elements and of every element sharing a vertex with
-// one (the seed code's list).
+} // namespace
+
 std::vector<char> refined_nodes(const Eigen::MatrixXi& C, const Eigen::VectorXd& indicator,
-                                double delta, long nodes, RefinementReport& rep) {
+                                double delta, long nodes, long* flagged) {
   std::vector<char> seed(size_t(nodes), 0), refined(size_t(nodes), 0);
+  long count = 0;
   for (long e = 0; e < C.rows(); ++e)
     if (indicator(e) > delta) {
-      ++rep.flagged;
-      for (int j = 0; j < 4; ++j)
+      ++count;
+      for (long j = 0; j < C.cols(); ++j)
         seed[size_t(C(e, j))] = 1;
     }
   for (long e = 0; e < C.rows(); ++e) {
     bool touches = false;
-    for (int j = 0; j < 4; ++j)
+    for (long j = 0; j < C.cols(); ++j)
       touches = touches || seed[size_t(C(e, j))];
     if (touches)
-      for (int j = 0; j < 4; ++j)
+      for (long j = 0; j < C.cols(); ++j)
         refined[size_t(C(e, j))] = 1;
   }
-  rep.refined_nodes = std::count(refined.begin(), refined.end(), char(1));
+  if (flagged != nullptr)
+    *flagged = count;
   return refined;
 }
-
-// Moves the midpoints n0 + project[r] (on their edges, every element positive) to their
-// projections P.row(r) where `moved`, one at a time: the largest fraction 1, 1/2, ..., 1/1024 of
-// the way that keeps every element at the node positive, else none. Elements stay positive
-// after each move (the others' positions are the current ones), so none is inverted at the end;
-// a small element at a curved boundary (a cut grid's sliver) can make the full step fold it.
-// Returns the nodes held short of F = 0.
-long place_projected(const Eigen::MatrixXi& C, long n0, const std::vector<long>& project,
-                     const Eigen::MatrixXd& P, const std::vector<char>& moved, Eigen::MatrixXd& V) {
-  constexpr int kHalvings = 10;
-  std::vector<std::vector<long>> star(project.size());
-  std::vector<long> row(size_t(V.rows() - n0), -1);
-  for (size_t r = 0; r < project.size(); ++r)
-    row[size_t(project[r])] = long(r);
-  for (long e = 0; e < C.rows(); ++e)
-    for (int j = 0; j < 4; ++j)
-      if (C(e, j) >= n0 && row[size_t(C(e, j) - n0)] >= 0)
-        star[size_t(row[size_t(C(e, j) - n0)])].push_back(e);
-  long held = 0;
-  for (size_t r = 0; r < project.size(); ++r) {
-    if (!moved[r])
-      continue;
-    const long n = n0 + project[r];
-    const Eigen::RowVector3d start = V.row(n), step = P.row(long(r)) - start;
-    double s = 1;
-    for (int k = 0; k <= kHalvings; ++k, s *= 0.5) {
-      V.row(n) = start + s * step;
-      bool valid = true;
-      for (long e : star[r])
-        valid = valid && signed_volume6(V, {C(e, 0), C(e, 1), C(e, 2), C(e, 3)}) > 0;
-      if (valid)
-        break;
-    }
-    if (s < 1) {
-      ++held;
-      if (s < std::ldexp(1.0, -kHalvings))
-        V.row(n) = start;
-    }
-  }
-  return held;
-}
-
-} // namespace
 
 Eigen::VectorXd refinement_indicator(const Eigen::MatrixXi& C, const Eigen::VectorXd& values) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(C.rows());
@@ -190,7 +151,8 @@ RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
     throw std::invalid_argument("refine_tetrahedra: delta must be in [0, 1)");
   RefinementReport rep;
   const std::vector<char> refined =
-      refined_nodes(C, refinement_indicator(C, values), delta, V.rows(), rep);
+      refined_nodes(C, refinement_indicator(C, values), delta, V.rows(), &rep.flagged);
+  rep.refined_nodes = std::count(refined.begin(), refined.end(), char(1));
   if (rep.flagged == 0)
     return rep;
   const std::vector<std::pair<int, int>> on_surface = facet_edges(C);
@@ -243,7 +205,11 @@ RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
     }
     std::vector<char> moved;
     project_by_gradient_walk(f, P, h, 100, {}, &moved);
-    rep.held = place_projected(C, n0, project, P, moved, V);
+    rep.held_nodes = detail::place_projected(
+        C, n0, project, P, moved, V, [&C](const Eigen::MatrixXd& W, long e) {
+          return signed_volume6(W, {C(e, 0), C(e, 1), C(e, 2), C(e, 3)}) > 0;
+        });
+    rep.held = long(rep.held_nodes.size());
     for (size_t r = 0; r < project.size(); ++r) {
       boundary[size_t(n0 + project[r])] = moved[r];
       rep.projected += moved[r];

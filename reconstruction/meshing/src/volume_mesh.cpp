@@ -8,6 +8,7 @@
 
 #include "corner_jacobian.h"
 #include "parallel.h"
+#include "untangle.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -781,6 +782,11 @@ VolumeMesh default_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
 }
 
 } // namespace
+
+long detail::untangle_hexahedra(const Eigen::MatrixXi& C, const std::vector<char>& fixed,
+                                int threads, Eigen::MatrixXd& V) {
+  return untangle_rounds(C, fixed, nullptr, {}, 0, threads, V);
+}
 
 Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C, int threads) {
   if (C.cols() != 4 && C.cols() != 8)

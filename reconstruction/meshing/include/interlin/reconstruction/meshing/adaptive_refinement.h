@@ -17,14 +17,27 @@ namespace interlin {
 // Output:  #C indicator values in [0, 1]
 Eigen::VectorXd refinement_indicator(const Eigen::MatrixXi& C, const Eigen::VectorXd& values);
 
+// The seed code's refined nodes (digest §7.2 [C]): the vertices of the elements with indicator >
+// delta and of every element sharing a vertex with one.
+// Inputs:  C #C by k elements, indicator #C, delta, nodes #V
+// Output:  #V flags; flagged (optional): the number of elements with indicator > delta
+std::vector<char> refined_nodes(const Eigen::MatrixXi& C, const Eigen::VectorXd& indicator,
+                                double delta, long nodes, long* flagged = nullptr);
+
 struct RefinementReport {
   long flagged = 0;       // elements with indicator > delta
   long refined_nodes = 0; // vertices of the flagged elements and of their vertex neighbours
+                          // (hexahedra: after the closure) ...
+  long widened = 0;       // ... of which added by the closure (hexahedra; tetrahedra: 0)
+  long folded = 0;        // hexahedra: children the parent's trilinear map folds (nearly flat
+                          // parents) before untangling ...
+  long still_folded = 0;  // ... and after it
   long split = 0;         // elements replaced by children
   long new_nodes = 0;     // edge midpoints added
   long projected = 0;     // of those, on boundary edges and moved onto F = 0 ...
   long held = 0;          // ... of which held short of it (the largest of 1, 1/2, ... 1/1024 of the
-                          // way that inverts no element; 0: left on the edge)
+                          // way that inverts no element; 0: left on the edge) ...
+  std::vector<long> held_nodes; // ... these nodes (flagged boundary: they stay in smoothing)
 };
 
 // One pass of the seed code's 2-refinement of tetrahedra (digest §7.2 [C]): the elements with
