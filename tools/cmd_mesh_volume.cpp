@@ -1,6 +1,7 @@
 // interlin mesh --volume: implicit solid -> tetrahedral or hexahedral mesh for analysis.
 #include "cmd_mesh_volume.h"
 
+#include "interlin/interflatation/limits.h"
 #include "interlin/interflatation/load_implicit.h"
 #include "interlin/reconstruction/io/input_error.h"
 #include "interlin/reconstruction/io/mesh_io.h"
@@ -96,11 +97,12 @@ struct AdaptRequest {
   int passes = 0;         // 0: no refinement
   double delta = 0.2;     // indicator threshold, a fraction of its range
   ImplicitFunction field; // the nodal quantity: --adapt-var of the model, or F
+  long max_elements = 0;  // --max-elements, the limit of the refined mesh too
 };
 
 AdaptRequest adapt_request_of(const ParsedArgs& a, const ImplicitFunction& f,
                               const VolumeRequest& r) {
-  AdaptRequest q{0, 0.2, f};
+  AdaptRequest q{0, 0.2, f, 0};
   if (!a.has("adapt")) {
     for (const char* only : {"adapt-delta", "adapt-var"})
       if (a.has(only))
@@ -108,6 +110,9 @@ AdaptRequest adapt_request_of(const ParsedArgs& a, const ImplicitFunction& f,
     return q;
   }
   q.passes = parse_int("adapt", a.get("adapt"), 1, 10);
+  q.max_elements = long(limit_option(a, "max-elements",
+                                     a.get("volume") == "hex" ? limits::volume_hexahedra
+                                                              : limits::volume_tetrahedra));
   q.delta = parse_double("adapt-delta", a.get("adapt-delta", "0.2"));
   if (!(q.delta >= 0 && q.delta < 1))
     throw UsageError("--adapt-delta: expected a number in [0, 1), got " + a.get("adapt-delta"));
@@ -138,9 +143,17 @@ std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunctio
       throw std::runtime_error("--adapt: the nodal quantity is not finite at a node");
     return v;
   };
-  const std::vector<RefinementReport> reports =
-      m.C.cols() == 8 ? adapt_hexahedra(m.V, m.C, m.boundary, values, q.delta, q.passes, f)
-                      : adapt_tetrahedra(m.V, m.C, m.boundary, values, q.delta, q.passes, f);
+  std::vector<RefinementReport> reports;
+  try {
+    reports =
+        m.C.cols() == 8
+            ? adapt_hexahedra(m.V, m.C, m.boundary, values, q.delta, q.passes, f, q.max_elements)
+            : adapt_tetrahedra(m.V, m.C, m.boundary, values, q.delta, q.passes, f, q.max_elements);
+  } catch (const std::length_error& e) {
+    const std::string what = e.what();
+    throw std::runtime_error("--adapt: " + what.substr(what.find(": ") + 2) +
+                             " (--max-elements; or fewer passes, a larger --adapt-delta)");
+  }
   m.B = boundary_facets(m.C, o.threads);
   VolumeSmoothingOptions so;
   so.sweeps = m.C.cols() == 8 ? 0 : interior_sweeps_of(o);

@@ -182,6 +182,12 @@ TEST_CASE("CLI mesh --volume hex --adapt: 3-refinement where the model's field v
   CHECK(count(adapted.out) > 2 * count(plain.out));
   check_boundary_line(adapted.out);
   CHECK(files_in(d) == 2u); // the model and the mesh
+  // a pass that would exceed --max-elements: one line, exit 1, no file (the limit is checked
+  // before the pass allocates its children: 2 passes of 27 per element otherwise)
+  fs::remove(d / "b.vtu");
+  expect_error(run(base + " --adapt 2 --adapt-delta 0 --max-elements 20000 -q"), 1,
+               "--adapt: the refinement would make");
+  CHECK(files_in(d) == 1u);
 }
 
 TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",

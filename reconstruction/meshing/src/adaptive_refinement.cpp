@@ -5,6 +5,7 @@
 #include "interlin/reconstruction/meshing/project_to_zero.h"
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 
+#include "element_limit.h"
 #include "place_projected.h"
 
 #include <Eigen/Geometry>
@@ -78,6 +79,20 @@ void children(const Tet& t, unsigned code, Midpoints& mid, std::vector<Tet>& out
   }
 }
 
+// The elements after the split: a tetrahedron with k refined vertices has 1, 1, 2, 4 or 8
+// children (the templates of `children`).
+long tetrahedra_after(const Eigen::MatrixXi& C, const std::vector<char>& refined) {
+  constexpr long kChildren[5] = {1, 1, 2, 4, 8};
+  long n = 0;
+  for (long e = 0; e < C.rows(); ++e) {
+    int k = 0;
+    for (int j = 0; j < 4; ++j)
+      k += refined[size_t(C(e, j))] != 0;
+    n += kChildren[k];
+  }
+  return n;
+}
+
 double signed_volume6(const Eigen::MatrixXd& V, const Tet& t) {
   const Eigen::Vector3d p0 = V.row(t[0]).transpose(), a = V.row(t[1]).transpose() - p0,
                         b = V.row(t[2]).transpose() - p0, c = V.row(t[3]).transpose() - p0;
@@ -140,7 +155,7 @@ Eigen::VectorXd refinement_indicator(const Eigen::MatrixXi& C, const Eigen::Vect
 
 RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
                                    std::vector<char>& boundary, Eigen::VectorXd& values,
-                                   double delta, const ImplicitFunction& f) {
+                                   double delta, const ImplicitFunction& f, long max_elements) {
   if (C.cols() != 4 || V.cols() != 3)
     throw std::invalid_argument("refine_tetrahedra: V must be #V by 3 and C #C by 4");
   if (values.size() != V.rows() || !values.allFinite())
@@ -155,6 +170,7 @@ RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
   rep.refined_nodes = std::count(refined.begin(), refined.end(), char(1));
   if (rep.flagged == 0)
     return rep;
+  detail::check_element_count(tetrahedra_after(C, refined), max_elements, "refine_tetrahedra");
   const std::vector<std::pair<int, int>> on_surface = facet_edges(C);
 
   Midpoints mid;
@@ -221,13 +237,13 @@ RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
 std::vector<RefinementReport> adapt_tetrahedra(
     Eigen::MatrixXd& V, Eigen::MatrixXi& C, std::vector<char>& boundary,
     const std::function<Eigen::VectorXd(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C)>& field,
-    double delta, int iterations, const ImplicitFunction& f) {
+    double delta, int iterations, const ImplicitFunction& f, long max_elements) {
   if (iterations < 0)
     throw std::invalid_argument("adapt_tetrahedra: iterations must be >= 0");
   std::vector<RefinementReport> reports;
   for (int it = 0; it < iterations; ++it) {
     Eigen::VectorXd values = field(V, C);
-    reports.push_back(refine_tetrahedra(V, C, boundary, values, delta, f));
+    reports.push_back(refine_tetrahedra(V, C, boundary, values, delta, f, max_elements));
     if (reports.back().flagged == 0)
       break;
   }

@@ -7,6 +7,7 @@
 #include "interlin/reconstruction/meshing/volume_smoothing.h"
 
 #include "corner_jacobian.h"
+#include "element_limit.h"
 #include "place_projected.h"
 #include "untangle.h"
 
@@ -506,6 +507,17 @@ std::vector<std::array<int, 8>> children(const Eigen::MatrixXi& C, const std::ve
   return out;
 }
 
+// The elements after the split: each hexahedron's template's children (1 when unchanged).
+long hexahedra_after(const Eigen::MatrixXi& C, const std::vector<char>& refined) {
+  const Templates& T = templates();
+  long n = 0;
+  for (long e = 0; e < C.rows(); ++e) {
+    const HexTemplate kind = T.table[code_of(C, e, refined)].kind;
+    n += kind == HexTemplate::none ? 1 : long(T.children(kind).size());
+  }
+  return n;
+}
+
 // The new nodes' positions and values: the trilinear map of their parents (C: the parents).
 void append_nodes(const Eigen::MatrixXi& C, const NewNodes& made, Eigen::MatrixXd& V,
                   Eigen::VectorXd& values, std::vector<char>& boundary) {
@@ -752,13 +764,15 @@ long close_refined_nodes(const Eigen::MatrixXi& C, std::vector<char>& refined) {
 
 RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
                                  std::vector<char>& boundary, Eigen::VectorXd& values,
-                                 std::vector<char> refined, const ImplicitFunction& f) {
+                                 std::vector<char> refined, const ImplicitFunction& f,
+                                 long max_elements) {
   check_mesh_arguments(V, C, boundary, values, "split_hexahedra");
   if (refined.size() != size_t(V.rows()))
     throw std::invalid_argument("split_hexahedra: refined must have #V flags");
   RefinementReport rep;
   rep.widened = close_refined_nodes(C, refined);
   rep.refined_nodes = std::count_if(refined.begin(), refined.end(), [](char r) { return r != 0; });
+  detail::check_element_count(hexahedra_after(C, refined), max_elements, "split_hexahedra");
   NewNodes made;
   made.first = V.rows();
   const std::vector<std::array<int, 8>> out = children(C, refined, made, rep.split);
@@ -784,7 +798,7 @@ RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
 
 RefinementReport refine_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
                                   std::vector<char>& boundary, Eigen::VectorXd& values,
-                                  double delta, const ImplicitFunction& f) {
+                                  double delta, const ImplicitFunction& f, long max_elements) {
   check_mesh_arguments(V, C, boundary, values, "refine_hexahedra");
   if (!(delta >= 0 && delta < 1))
     throw std::invalid_argument("refine_hexahedra: delta must be in [0, 1)");
@@ -793,7 +807,8 @@ RefinementReport refine_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
       refined_nodes(C, refinement_indicator(C, values), delta, V.rows(), &flagged);
   if (flagged == 0)
     return {};
-  RefinementReport rep = split_hexahedra(V, C, boundary, values, std::move(refined), f);
+  RefinementReport rep =
+      split_hexahedra(V, C, boundary, values, std::move(refined), f, max_elements);
   rep.flagged = flagged;
   return rep;
 }
@@ -801,13 +816,13 @@ RefinementReport refine_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
 std::vector<RefinementReport> adapt_hexahedra(
     Eigen::MatrixXd& V, Eigen::MatrixXi& C, std::vector<char>& boundary,
     const std::function<Eigen::VectorXd(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C)>& field,
-    double delta, int iterations, const ImplicitFunction& f) {
+    double delta, int iterations, const ImplicitFunction& f, long max_elements) {
   if (iterations < 0)
     throw std::invalid_argument("adapt_hexahedra: iterations must be >= 0");
   std::vector<RefinementReport> reports;
   for (int it = 0; it < iterations; ++it) {
     Eigen::VectorXd values = field(V, C);
-    reports.push_back(refine_hexahedra(V, C, boundary, values, delta, f));
+    reports.push_back(refine_hexahedra(V, C, boundary, values, delta, f, max_elements));
     if (reports.back().flagged == 0)
       break;
   }

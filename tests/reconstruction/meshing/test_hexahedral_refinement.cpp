@@ -451,3 +451,33 @@ TEST_CASE("split_hexahedra: bad arguments", "[volume][adapt][hex]") {
   tets << 0, 1, 2, 3;
   CHECK_THROWS_AS(refine_hexahedra(V, tets, b, ok, 0.2), std::invalid_argument);
 }
+
+TEST_CASE("split_hexahedra, refine_tetrahedra: a pass beyond max_elements changes nothing",
+          "[volume][adapt][hex]") {
+  // 8 hexahedra, every node refined: 8 x 27 = 216 children; the limit is checked first
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi C;
+  hex_grid(2, V, C);
+  const Eigen::MatrixXd V0 = V;
+  const Eigen::MatrixXi C0 = C;
+  std::vector<char> b(size_t(V.rows()), 0);
+  Eigen::VectorXd values = V.col(0);
+  const std::vector<char> all(size_t(V.rows()), 1);
+  CHECK_THROWS_WITH(split_hexahedra(V, C, b, values, all, {}, 215),
+                    Catch::Contains("would make 216 elements, more than the limit of 215"));
+  CHECK(V == V0);
+  CHECK(C == C0);
+  CHECK(split_hexahedra(V, C, b, values, all, {}, 216).split == 8);
+  CHECK(C.rows() == 216);
+  // one Kuhn cube (6 tetrahedra), indicator everywhere (delta 0): 6 x 8 = 48 children
+  Eigen::MatrixXd T(8, 3);
+  T << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
+  Eigen::MatrixXi K(6, 4);
+  K << 0, 1, 2, 6, 0, 2, 3, 6, 0, 3, 7, 6, 0, 7, 4, 6, 0, 4, 5, 6, 0, 5, 1, 6;
+  std::vector<char> tb(8, 0);
+  Eigen::VectorXd tv = T.col(0);
+  CHECK_THROWS_AS(refine_tetrahedra(T, K, tb, tv, 0.0, {}, 47), std::length_error);
+  CHECK(K.rows() == 6);
+  CHECK(refine_tetrahedra(T, K, tb, tv, 0.0, {}, 48).split == 6);
+  CHECK(K.rows() == 48);
+}

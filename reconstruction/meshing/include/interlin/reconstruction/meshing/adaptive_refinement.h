@@ -61,9 +61,11 @@ struct RefinementReport {
 //   boundary #V flags of nodes on F = 0 -> #V' (projected midpoints flagged)
 //   values   -> #V' (midpoints get the mean of their edge's ends)
 // Output:    the counts
+// max_elements > 0: std::length_error, before any change, when the pass would make more elements.
 RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
                                    std::vector<char>& boundary, Eigen::VectorXd& values,
-                                   double delta, const ImplicitFunction& f = {});
+                                   double delta, const ImplicitFunction& f = {},
+                                   long max_elements = 0);
 
 // Seed 003's adaptive loop: `iterations` times, evaluate the nodal quantity on the current mesh
 // (field(V, C): the FE solve in the seed), then refine_tetrahedra. Stops early when nothing is
@@ -71,6 +73,6 @@ RefinementReport refine_tetrahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
 std::vector<RefinementReport> adapt_tetrahedra(
     Eigen::MatrixXd& V, Eigen::MatrixXi& C, std::vector<char>& boundary,
     const std::function<Eigen::VectorXd(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C)>& field,
-    double delta, int iterations, const ImplicitFunction& f = {});
+    double delta, int iterations, const ImplicitFunction& f = {}, long max_elements = 0);
 
 } // namespace interlin

@@ -49,9 +49,11 @@ long close_refined_nodes(const Eigen::MatrixXi& C, std::vector<char>& refined);
 //   boundary #V flags of nodes on F = 0 -> #V' (projected new nodes flagged)
 //   values   #V nodal quantity -> #V' (new nodes: trilinear interpolation of the parent's)
 // Output:    the counts (flagged: 0; refined_nodes after the closure, widened by it)
+// max_elements > 0: std::length_error, before any change, when the split would make more.
 RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
                                  std::vector<char>& boundary, Eigen::VectorXd& values,
-                                 std::vector<char> refined, const ImplicitFunction& f = {});
+                                 std::vector<char> refined, const ImplicitFunction& f = {},
+                                 long max_elements = 0);
 
 // One pass of seed 003's adaptive 3-refinement of hexahedra (§7.2 [C]): the elements with
 // indicator > delta and every element sharing a vertex with one give the refined nodes
@@ -61,13 +63,14 @@ RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
 //   delta    threshold in [0, 1)
 RefinementReport refine_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
                                   std::vector<char>& boundary, Eigen::VectorXd& values,
-                                  double delta, const ImplicitFunction& f = {});
+                                  double delta, const ImplicitFunction& f = {},
+                                  long max_elements = 0);
 
 // Seed 003's adaptive loop on hexahedra: `iterations` times field(V, C), then refine_hexahedra;
 // stops early when nothing is flagged. Returns one report per pass made.
 std::vector<RefinementReport> adapt_hexahedra(
     Eigen::MatrixXd& V, Eigen::MatrixXi& C, std::vector<char>& boundary,
     const std::function<Eigen::VectorXd(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C)>& field,
-    double delta, int iterations, const ImplicitFunction& f = {});
+    double delta, int iterations, const ImplicitFunction& f = {}, long max_elements = 0);
 
 } // namespace interlin
