@@ -222,7 +222,7 @@ void reconstruct_sectioned(const PointCloud& c, int threads, Reconstruction& r) 
 // measured and the hold-out prefers it (choose_cloud_fit), as `interlin implicit --fit auto`
 // does.
 bool hermite_by_default(const PointCloud& c, bool normals_measured, int threads) {
-  if (c.points.rows() > kHermiteRbfAutoPoints || !normals_measured)
+  if (!hermite_rbf_offered(c, normals_measured))
     return false;
   CloudFitOptions o;
   o.threads = threads;

@@ -100,9 +100,7 @@ void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& fami
   write_model(output, to_ifl(b.model));
 }
 
-// --fit: hrbf, pu, or auto: the hold-out's choice for clouds of at most kHermiteRbfAutoPoints
-// points whose normals come from the file (the interpolant reproduces the normals, and normals
-// estimated from a sparse cloud misled the hold-out on 3 of 8 sparse clouds, docs/benchmarks.md).
+// --fit: hrbf, pu, or auto: the hold-out's choice where hermite_rbf_offered.
 bool use_hermite_rbf(const std::string& input, const PointCloud& c, const std::string& fit,
                      bool normals_estimated, const CloudFitOptions& fo, const Progress& progress) {
   if (fit == "hrbf") {
@@ -113,7 +111,7 @@ bool use_hermite_rbf(const std::string& input, const PointCloud& c, const std::s
                             " (use --fit pu or --voxel to thin it)");
     return true;
   }
-  if (fit == "pu" || c.points.rows() > kHermiteRbfAutoPoints || normals_estimated)
+  if (fit == "pu" || !hermite_rbf_offered(c, !normals_estimated))
     return false;
   progress("choosing the fit: five-fold hold-out of the partition of unity and the Hermite RBF");
   const CloudFitChoice choice = choose_cloud_fit(c, fo);

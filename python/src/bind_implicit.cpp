@@ -139,7 +139,7 @@ ImplicitModel cloud_fit(const std::string& path, PointCloud& c, const CloudArgs&
   {
     py::gil_scoped_release release;
     cloud_normals(path, c, a.prep, rep, &notes);
-    if (a.method == "auto" && c.points.rows() <= kHermiteRbfAutoPoints && !rep.normals_estimated)
+    if (a.method == "auto" && hermite_rbf_offered(c, !rep.normals_estimated))
       choice = choose_cloud_fit(c, a.fit);
     if (a.method == "hrbf" && c.points.rows() > kHermiteRbfMaxPoints)
       throw_input_error(path, 0,

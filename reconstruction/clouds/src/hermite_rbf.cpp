@@ -152,8 +152,9 @@ HermiteRbf fit_hermite_rbf(const PointCloud& cloud, HermiteRbfInfo* info_out) {
   Eigen::Vector4d gamma;
   solve_saddle(M, polynomial_block(m.points), rhs, lambda, gamma);
   m.a = lambda.head(n);
+  m.b.resize(n, 3);
   for (int c = 0; c < 3; ++c)
-    m.b.resize(n, 3), m.b.col(c) = lambda.segment(n + c * n, n);
+    m.b.col(c) = lambda.segment(n + c * n, n);
   m.c = gamma(0);
   m.g = gamma.tail(3);
   constexpr double kBoxMargin = 0.05; // as fit_cloud_implicit's box
