@@ -121,8 +121,8 @@ Volume meshes (--volume tet|hex; seed 003's solid elements, for finite-element a
                          a distance to a load, ...); default the body function F itself
   --max-elements N       most elements the grid may hold, 12 tetrahedra (6 with --lattice
                          kuhn) or 1 hexahedron per cell, and the refined mesh of --adapt
-                         (checked before each pass; default 30000000 tetrahedra, 5000000
-                         hexahedra: about 4 GB of memory when the body fills the grid)
+                         (checked before each pass) (default 30000000 tetrahedra,
+                         5000000 hexahedra: about 4 GB of memory when the body fills the grid)
   The summary gives the dihedral angles, scaled Jacobian, radius ratio (tetrahedra),
   inverted elements (an error unless 0), the boundary nodes on F = 0 (all but those held
   short of it or not projected) with max |F| there, and the volume; a body that reaches the
