@@ -18,6 +18,7 @@ namespace {
 
 using Eigen::MatrixXd;
 using Eigen::MatrixXi;
+using Flags = Eigen::Matrix<bool, Eigen::Dynamic, 1>;
 
 void check_mesh_arrays(const MatrixXd& V, const MatrixXi& F) {
   require_shape(V, 3, "V");
@@ -90,8 +91,8 @@ py::dict quality_dict(const VolumeQuality& q) {
 }
 
 // The library's per-node flags (char) as a NumPy bool array (N,).
-Eigen::Matrix<bool, Eigen::Dynamic, 1> boundary_flags(const std::vector<char>& b) {
-  Eigen::Matrix<bool, Eigen::Dynamic, 1> on(static_cast<Eigen::Index>(b.size()));
+Flags boundary_flags(const std::vector<char>& b) {
+  Flags on(static_cast<Eigen::Index>(b.size()));
   for (size_t i = 0; i < b.size(); ++i)
     on(static_cast<Eigen::Index>(i)) = b[i] != 0;
   return on;
@@ -109,8 +110,7 @@ py::dict refinement_dict(const RefinementReport& r) {
 
 // Elements (E, corners: 4 tetrahedra, 8 hexahedra) and boundary flags (N,) as the refinement
 // takes them; ValueError otherwise.
-std::vector<char> refinement_input(const MatrixXd& V, const MatrixXi& C,
-                                   const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
+std::vector<char> refinement_input(const MatrixXd& V, const MatrixXi& C, const Flags& boundary,
                                    int corners = 4) {
   require_shape(V, 3, "V");
   if (C.cols() != corners)
@@ -125,24 +125,73 @@ py::tuple refined_mesh(MatrixXd V, MatrixXi C, const std::vector<char>& b, py::o
   return py::make_tuple(std::move(V), std::move(C), boundary_flags(b), std::move(extra));
 }
 
-// Seed 003's 3-refinement of hexahedra (hexahedral_refinement.h).
-void bind_hexahedral_refinement(py::module_& m) {
-  m.def(
-      "refine_hexahedra",
-      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
-         Eigen::VectorXd values, double delta, const std::optional<ImplicitFunction>& f) {
-        std::vector<char> b = refinement_input(V, C, boundary, 8);
-        RefinementReport r;
-        {
-          py::gil_scoped_release release;
-          r = refine_hexahedra(V, C, b, values, delta, f ? *f : ImplicitFunction{});
-        }
-        return refined_mesh(std::move(V), std::move(C), b,
-                            py::make_tuple(std::move(values), refinement_dict(r)));
-      },
-      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("values"), py::arg("delta"),
-      py::arg("f") = py::none(),
-      R"(One pass of seed 003's conforming 3-refinement of hexahedra (interlin mesh --volume hex
+// One refinement pass of either element kind (Corners 4: tetrahedra, 8: hexahedra) as a Python
+// function; refine(V, C, b, values, delta, f) is refine_tetrahedra or refine_hexahedra.
+template <int Corners, class Refine>
+auto refinement_pass(Refine refine) {
+  return [refine](MatrixXd V, MatrixXi C, const Flags& boundary, Eigen::VectorXd values,
+                  double delta, const std::optional<ImplicitFunction>& f) {
+    std::vector<char> b = refinement_input(V, C, boundary, Corners);
+    RefinementReport r;
+    {
+      py::gil_scoped_release release;
+      r = refine(V, C, b, values, delta, f ? *f : ImplicitFunction{});
+    }
+    return refined_mesh(std::move(V), std::move(C), b,
+                        py::make_tuple(std::move(values), refinement_dict(r)));
+  };
+}
+
+// Seed 003's adaptive loop of either element kind, the nodal field a Python function of the
+// current mesh; adapt(V, C, b, values, delta, iterations, f) is adapt_tetrahedra or
+// adapt_hexahedra.
+template <int Corners, class Adapt>
+auto adaptive_loop(Adapt adapt) {
+  return [adapt](MatrixXd V, MatrixXi C, const Flags& boundary, const py::function& field,
+                 double delta, int iterations, const std::optional<ImplicitFunction>& f) {
+    std::vector<char> b = refinement_input(V, C, boundary, Corners);
+    const auto values = [&field](const MatrixXd& Vk, const MatrixXi& Ck) {
+      py::gil_scoped_acquire gil;
+      return field(Vk, Ck).cast<Eigen::VectorXd>();
+    };
+    std::vector<RefinementReport> reports;
+    {
+      py::gil_scoped_release release;
+      reports = adapt(V, C, b, values, delta, iterations, f ? *f : ImplicitFunction{});
+    }
+    py::list passes;
+    for (const RefinementReport& r : reports)
+      passes.append(refinement_dict(r));
+    return refined_mesh(std::move(V), std::move(C), b, passes);
+  };
+}
+
+void bind_refinement(py::module_& m) {
+  m.def("refinement_indicator", &refinement_indicator, py::arg("C"), py::arg("values"),
+        release_gil(),
+        R"(Seed 003's indicator (digest §7.2): max |C_i - C_j| over each element's nodes over the
+range of the nodal quantity values (N,) -> (E,) in [0, 1]. C (E, k) elements of any kind.)");
+  m.def("refine_tetrahedra",
+        refinement_pass<4>([](auto&&... a) { return refine_tetrahedra(a...); }), py::arg("V"),
+        py::arg("C"), py::arg("boundary"), py::arg("values"), py::arg("delta"),
+        py::arg("f") = py::none(),
+        R"(One pass of seed 003's conforming 2-refinement of tetrahedra (interlin mesh --volume
+--adapt): elements with indicator > delta, their vertex neighbours' vertices refined, edges
+halved iff both ends are refined (templates of 2, 4, 8 children; no hanging nodes); new nodes
+on boundary facet edges projected onto F = 0 when the body f (Implicit) is given.
+V (N, 3), C (E, 4) positive tetrahedra, boundary (N,) bool, values (N,) nodal quantity ->
+(V (N', 3), C (E', 4) int32, boundary (N',), (values (N',): midpoints the mean of their edge's
+ends, report dict: flagged, refined_nodes, split, new_nodes, projected, held (of those, held short of F = 0 so that no element folds))).)");
+  m.def("adapt_tetrahedra", adaptive_loop<4>([](auto&&... a) { return adapt_tetrahedra(a...); }),
+        py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("field"), py::arg("delta"),
+        py::arg("iterations"), py::arg("f") = py::none(),
+        R"(Seed 003's adaptive loop: `iterations` times field(V, C) -> (N,) nodal values (an FE
+solution in the seed; any Python function of the current mesh), then refine_tetrahedra with
+delta; stops when nothing is flagged -> (V, C, boundary, [report dict per pass]).)");
+  m.def("refine_hexahedra", refinement_pass<8>([](auto&&... a) { return refine_hexahedra(a...); }),
+        py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("values"), py::arg("delta"),
+        py::arg("f") = py::none(),
+        R"(One pass of seed 003's conforming 3-refinement of hexahedra (interlin mesh --volume hex
 --adapt): elements with indicator > delta, their vertex neighbours' vertices refined, an edge
 trisected iff both ends are refined; the refined nodes widened until every element's refined
 edges are none, one, a face's four or all twelve (templates of 5, 13, 27 children; no hanging
@@ -151,88 +200,12 @@ V (N, 3), C (E, 8) positive hexahedra (VTK order), boundary (N,) bool, values (N
 (V (N', 3), C (E', 8) int32, boundary (N',), (values (N',): trilinear in the parents, report
 dict: flagged, refined_nodes, widened (added by the closure), split, new_nodes, folded (children
 a nearly flat parent's map folds, untangled), still_folded (after), projected, held)).)");
-  m.def(
-      "adapt_hexahedra",
-      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
-         const py::function& field, double delta, int iterations,
-         const std::optional<ImplicitFunction>& f) {
-        std::vector<char> b = refinement_input(V, C, boundary, 8);
-        const auto values = [&field](const MatrixXd& Vk, const MatrixXi& Ck) {
-          py::gil_scoped_acquire gil;
-          return field(Vk, Ck).cast<Eigen::VectorXd>();
-        };
-        std::vector<RefinementReport> reports;
-        {
-          py::gil_scoped_release release;
-          reports =
-              adapt_hexahedra(V, C, b, values, delta, iterations, f ? *f : ImplicitFunction{});
-        }
-        py::list passes;
-        for (const RefinementReport& r : reports)
-          passes.append(refinement_dict(r));
-        return refined_mesh(std::move(V), std::move(C), b, passes);
-      },
-      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("field"), py::arg("delta"),
-      py::arg("iterations"), py::arg("f") = py::none(),
-      R"(adapt_tetrahedra for hexahedra: `iterations` times field(V, C) -> (N,), then
+  m.def("adapt_hexahedra", adaptive_loop<8>([](auto&&... a) { return adapt_hexahedra(a...); }),
+        py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("field"), py::arg("delta"),
+        py::arg("iterations"), py::arg("f") = py::none(),
+        R"(adapt_tetrahedra for hexahedra: `iterations` times field(V, C) -> (N,), then
 refine_hexahedra with delta; stops when nothing is flagged -> (V, C, boundary, [report dict per
 pass]).)");
-}
-
-void bind_refinement(py::module_& m) {
-  m.def("refinement_indicator", &refinement_indicator, py::arg("C"), py::arg("values"),
-        release_gil(),
-        R"(Seed 003's indicator (digest §7.2): max |C_i - C_j| over each element's nodes over the
-range of the nodal quantity values (N,) -> (E,) in [0, 1]. C (E, k) elements of any kind.)");
-  m.def(
-      "refine_tetrahedra",
-      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
-         Eigen::VectorXd values, double delta, const std::optional<ImplicitFunction>& f) {
-        std::vector<char> b = refinement_input(V, C, boundary);
-        RefinementReport r;
-        {
-          py::gil_scoped_release release;
-          r = refine_tetrahedra(V, C, b, values, delta, f ? *f : ImplicitFunction{});
-        }
-        return refined_mesh(std::move(V), std::move(C), b,
-                            py::make_tuple(std::move(values), refinement_dict(r)));
-      },
-      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("values"), py::arg("delta"),
-      py::arg("f") = py::none(),
-      R"(One pass of seed 003's conforming 2-refinement of tetrahedra (interlin mesh --volume
---adapt): elements with indicator > delta, their vertex neighbours' vertices refined, edges
-halved iff both ends are refined (templates of 2, 4, 8 children; no hanging nodes); new nodes
-on boundary facet edges projected onto F = 0 when the body f (Implicit) is given.
-V (N, 3), C (E, 4) positive tetrahedra, boundary (N,) bool, values (N,) nodal quantity ->
-(V (N', 3), C (E', 4) int32, boundary (N',), (values (N',): midpoints the mean of their edge's
-ends, report dict: flagged, refined_nodes, split, new_nodes, projected, held (of those, held short of F = 0 so that no element folds))).)");
-  m.def(
-      "adapt_tetrahedra",
-      [](MatrixXd V, MatrixXi C, const Eigen::Matrix<bool, Eigen::Dynamic, 1>& boundary,
-         const py::function& field, double delta, int iterations,
-         const std::optional<ImplicitFunction>& f) {
-        std::vector<char> b = refinement_input(V, C, boundary);
-        const auto values = [&field](const MatrixXd& Vk, const MatrixXi& Ck) {
-          py::gil_scoped_acquire gil;
-          return field(Vk, Ck).cast<Eigen::VectorXd>();
-        };
-        std::vector<RefinementReport> reports;
-        {
-          py::gil_scoped_release release;
-          reports =
-              adapt_tetrahedra(V, C, b, values, delta, iterations, f ? *f : ImplicitFunction{});
-        }
-        py::list passes;
-        for (const RefinementReport& r : reports)
-          passes.append(refinement_dict(r));
-        return refined_mesh(std::move(V), std::move(C), b, passes);
-      },
-      py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("field"), py::arg("delta"),
-      py::arg("iterations"), py::arg("f") = py::none(),
-      R"(Seed 003's adaptive loop: `iterations` times field(V, C) -> (N,) nodal values (an FE
-solution in the seed; any Python function of the current mesh), then refine_tetrahedra with
-delta; stops when nothing is flagged -> (V, C, boundary, [report dict per pass]).)");
-  bind_hexahedral_refinement(m);
 }
 
 void bind_volume_meshes(py::module_& m) {
