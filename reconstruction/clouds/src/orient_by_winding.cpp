@@ -1,6 +1,7 @@
 // Patch signs chosen by the winding number (orient_normals.h, orient_by_winding_number).
 #include "interlin/reconstruction/clouds/orient_normals.h"
 
+#include "exterior_side.h"
 #include "nearest_neighbours.h"
 #include "orientation_tree.h"
 #include "winding_number.h"
@@ -56,6 +57,11 @@ constexpr double kWallSpacings = 0.5;
 // were mostly wrong (a gap to the wall test) is turned once enough of them are right; a point
 // turned is never turned back (its tests then both say outward). At most kMaxSidePasses.
 constexpr int kMaxSidePasses = 10;
+
+// The flood fill's votes (exterior_side.h) on voxels of kVoxelSpacings point spacings (finer ones
+// leak through the sampling's gaps: the UAV at 1 spacing); a patch takes the votes' sign when at
+// least kVotedShare of its points vote and kVoteAgreement of the votes agree.
+constexpr double kVoxelSpacings = 1.5, kVotedShare = 0.2, kVoteAgreement = 0.9;
 
 int find(std::vector<int>& parent, int i) {
   while (parent[size_t(i)] != i)
@@ -119,20 +125,44 @@ std::vector<int> largest_patches(const std::vector<int>& label) {
   return roots;
 }
 
+// Each decided patch's sign as the flood fill's votes give it (rows[r]: its points; the last
+// entry, the undecided points, is not read): +1 or -1 where they decide it, 0 where not.
+std::vector<int> voted_signs(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+                             const std::vector<std::vector<Index>>& rows, double spacing) {
+  const std::vector<signed char> vote = detail::exterior_votes(P, N, kVoxelSpacings * spacing);
+  std::vector<int> known(rows.size() - 1, 0);
+  for (size_t r = 0; r < known.size(); ++r) {
+    double plus = 0, minus = 0;
+    for (Index i : rows[r]) {
+      plus += vote[size_t(i)] > 0;
+      minus += vote[size_t(i)] < 0;
+    }
+    if (plus + minus >= kVotedShare * double(rows[r].size()) &&
+        std::max(plus, minus) >= kVoteAgreement * (plus + minus))
+      known[r] = plus > minus ? 1 : -1;
+  }
+  return known;
+}
+
 // The signs s of the decided patches minimising sum over probes of min(|w|, 1) at the outside
 // offset of each probed point (its own patch's sign chooses which offset that is): about 0 for
 // outward normals everywhere. at_plus[r][q], at_minus[r][q]: patch r's winding number at probe
-// q's two offsets. Steepest descent over single flips, the sums at the probes kept up to date.
+// q's two offsets. Steepest descent over single flips, the sums at the probes kept up to date;
+// the patches with known[r] != 0 keep that sign.
 std::vector<int> choose_signs(const std::vector<int>& probe_patch,
                               const std::vector<std::vector<double>>& at_plus,
-                              const std::vector<std::vector<double>>& at_minus) {
+                              const std::vector<std::vector<double>>& at_minus,
+                              const std::vector<int>& known) {
   const size_t R = at_plus.size(), m = probe_patch.size();
   std::vector<int> s(R, 1);
+  for (size_t r = 0; r < R; ++r)
+    if (known[r] != 0)
+      s[r] = known[r];
   std::vector<double> wp(m, 0), wm(m, 0);
   for (size_t r = 0; r < R; ++r)
     for (size_t q = 0; q < m; ++q) {
-      wp[q] += at_plus[r][q];
-      wm[q] += at_minus[r][q];
+      wp[q] += s[r] * at_plus[r][q];
+      wm[q] += s[r] * at_minus[r][q];
     }
   auto cost = [](int own_sign, double p, double n) {
     return std::min(std::abs(own_sign > 0 ? p : n), 1.0);
@@ -141,6 +171,8 @@ std::vector<int> choose_signs(const std::vector<int>& probe_patch,
     double best = 0;
     size_t best_r = R;
     for (size_t r = 0; r < R; ++r) {
+      if (known[r] != 0)
+        continue;
       double delta = 0; // energy change if patch r flips
       for (size_t q = 0; q < m; ++q) {
         const size_t own = size_t(probe_patch[q]);
@@ -342,7 +374,8 @@ Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, i
       at_minus[size_t(r)].push_back(w(P.row(i).transpose() - offset(i) * N.row(i).transpose()));
     }
   }
-  const std::vector<int> s = choose_signs(probe_patch, at_plus, at_minus);
+  const std::vector<int> known = voted_signs(P, N, rows, detail::median_spacing(area));
+  const std::vector<int> s = choose_signs(probe_patch, at_plus, at_minus, known);
   if (thin_walls)
     orient_from_patches(P, N, K, which, R, s);
   else
@@ -352,7 +385,8 @@ Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, i
   const double volume = ((P.rowwise() - c).array() * N.array()).rowwise().sum().matrix().dot(area);
   if (volume < 0)
     N *= -1;
-  if (outside_winding(P, N, area, sigma) >= outside_winding(P, N0, area, sigma))
+  const bool voted_flip = std::count(known.begin(), known.end(), -1) > 0; // positions decided
+  if (!voted_flip && outside_winding(P, N, area, sigma) >= outside_winding(P, N0, area, sigma))
     N = N0; // no better than the propagated orientation by the whole cloud's measure
   if (thin_walls)
     orient_thin_wall_sides(P, N, index, area, which, R, sigma);

@@ -34,10 +34,17 @@ void orient_normals(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
 // over single flips, sum min(|w(q)|, 1) over probes q = p_i + d n_i outside up to 40 points of
 // each (d = 2 point spacings + 3 x the estimated noise): the generalized winding number w of the
 // oriented cloud (Barill et al. 2018) is 0 outside a closed surface with outward normals, while
-// a flipped side makes it about +-1 or 1/2 there. The other points take the sign change of the
-// nearest decided point along the neighbour graph; the global sign makes the enclosed volume
-// (divergence theorem) positive. The result is kept only if its mean min(|w|, 1) at 4000 such
-// outside probes of the whole cloud is lower than the input's (never worse by that measure).
+// a flipped side makes it about +-1 or 1/2 there. Before the descent, a voxel flood fill reads
+// the outside from the points' positions alone (exterior_side.h: voxels of 1.5 point spacings,
+// those within one voxel of a point the shell, the free voxels reached from the border outside):
+// a point votes +1 when the first free voxel along +n is outside and along -n inside, -1 for the
+// reverse; a patch where at least 20 % of the points vote and 90 % of the votes agree keeps the
+// votes' sign (walls thinner than about 4 spacings, and clouds with holes, give no votes). The
+// other points take the sign change of the nearest decided point along the neighbour graph; the
+// global sign makes the enclosed volume (divergence theorem) positive. The result is kept only if its mean min(|w|, 1) at 4000 such
+// outside probes of the whole cloud is lower than the input's (never worse by that measure), or
+// if the votes turned a patch (a narrow slot's sides make that measure prefer a wrong side:
+// docs/benchmarks.md "Orientation by a flood fill").
 // thin_walls (prepare_cloud's default): the points outside the decided patches (rims, thin
 // walls' edges, sharp edges) are instead oriented again from all decided patches at once by
 // Hoppe's propagation (the minimum spanning tree grown from every decided point), so each

@@ -1,0 +1,132 @@
+// The outside of a closed scan by a voxel flood fill (exterior_side.h).
+#include "exterior_side.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace interlin::detail {
+
+namespace {
+
+constexpr long kMaxVoxels = 1L << 26;
+constexpr int kPadding = 2;        // free voxels around the shell on every side
+constexpr double kMarchVoxels = 6; // how far a vote looks for a free voxel along the normal
+enum : std::uint8_t { kInside = 0, kShell = 1, kOutside = 2 };
+
+struct Grid {
+  Eigen::Array3d lo;
+  double h = 0;
+  std::array<long, 3> n{};
+  std::vector<std::uint8_t> state;
+
+  long index(long x, long y, long z) const { return (z * n[1] + y) * n[0] + x; }
+  std::array<long, 3> cell(const Eigen::Array3d& p) const {
+    const Eigen::Array3d c = ((p - lo) / h).floor();
+    return {long(c(0)), long(c(1)), long(c(2))};
+  }
+  bool inside_grid(const std::array<long, 3>& c) const {
+    return c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < n[0] && c[1] < n[1] && c[2] < n[2];
+  }
+};
+
+// The grid around P, its voxels all free (kInside until the flood fill).
+Grid empty_grid(const Eigen::MatrixX3d& P, double voxel) {
+  Grid g;
+  g.h = voxel;
+  const Eigen::Array3d lo = P.colwise().minCoeff().transpose().array();
+  const Eigen::Array3d hi = P.colwise().maxCoeff().transpose().array();
+  for (;;) {
+    g.lo = lo - (kPadding + 1) * g.h;
+    long total = 1;
+    for (int a = 0; a < 3; ++a) {
+      g.n[size_t(a)] = long(std::ceil((hi(a) - lo(a)) / g.h)) + 2 * (kPadding + 1) + 1;
+      total *= g.n[size_t(a)];
+    }
+    if (total <= kMaxVoxels) {
+      g.state.assign(size_t(total), kInside);
+      return g;
+    }
+    g.h *= 2;
+  }
+}
+
+// Every voxel within one voxel (26-neighbourhood) of a point's voxel becomes shell.
+void mark_shell(Grid& g, const Eigen::MatrixX3d& P) {
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const auto c = g.cell(P.row(i).transpose().array());
+    for (long dz = -1; dz <= 1; ++dz)
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dx = -1; dx <= 1; ++dx)
+          g.state[size_t(g.index(c[0] + dx, c[1] + dy, c[2] + dz))] = kShell;
+  }
+}
+
+// The free voxels reached from the grid's border through face neighbours become kOutside.
+void flood_outside(Grid& g) {
+  std::vector<long> queue;
+  auto visit = [&](long x, long y, long z) {
+    std::uint8_t& s = g.state[size_t(g.index(x, y, z))];
+    if (s == kInside) {
+      s = kOutside;
+      queue.push_back(g.index(x, y, z));
+    }
+  };
+  for (long z = 0; z < g.n[2]; ++z)
+    for (long y = 0; y < g.n[1]; ++y)
+      for (long x = 0; x < g.n[0]; ++x)
+        if (x == 0 || y == 0 || z == 0 || x == g.n[0] - 1 || y == g.n[1] - 1 || z == g.n[2] - 1)
+          visit(x, y, z);
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const long v = queue[head], x = v % g.n[0], y = (v / g.n[0]) % g.n[1],
+               z = v / (g.n[0] * g.n[1]);
+    if (x > 0)
+      visit(x - 1, y, z);
+    if (x + 1 < g.n[0])
+      visit(x + 1, y, z);
+    if (y > 0)
+      visit(x, y - 1, z);
+    if (y + 1 < g.n[1])
+      visit(x, y + 1, z);
+    if (z > 0)
+      visit(x, y, z - 1);
+    if (z + 1 < g.n[2])
+      visit(x, y, z + 1);
+  }
+}
+
+// The state of the first non-shell voxel from p along d (kShell when none within kMarchVoxels).
+std::uint8_t first_free(const Grid& g, const Eigen::Array3d& p, const Eigen::Array3d& d) {
+  for (double t = 0.5 * g.h; t <= kMarchVoxels * g.h; t += 0.5 * g.h) {
+    const auto c = g.cell(p + t * d);
+    if (!g.inside_grid(c))
+      return kOutside;
+    const std::uint8_t s = g.state[size_t(g.index(c[0], c[1], c[2]))];
+    if (s != kShell)
+      return s;
+  }
+  return kShell;
+}
+
+} // namespace
+
+std::vector<signed char> exterior_votes(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+                                        double voxel) {
+  std::vector<signed char> vote(size_t(P.rows()), 0);
+  if (P.rows() == 0 || !(voxel > 0))
+    return vote;
+  Grid g = empty_grid(P, voxel);
+  mark_shell(g, P);
+  flood_outside(g);
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    const Eigen::Array3d p = P.row(i).transpose().array(), n = N.row(i).transpose().array();
+    const std::uint8_t ahead = first_free(g, p, n), behind = first_free(g, p, -n);
+    if (ahead == kOutside && behind == kInside)
+      vote[size_t(i)] = 1;
+    else if (ahead == kInside && behind == kOutside)
+      vote[size_t(i)] = -1;
+  }
+  return vote;
+}
+
+} // namespace interlin::detail
