@@ -39,12 +39,12 @@ void orient_normals(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
 // those within one voxel of a point the shell, the free voxels reached from the border outside):
 // a point votes +1 when the first free voxel along +n is outside and along -n inside, -1 for the
 // reverse; a patch where at least 20 % of the points vote and 90 % of the votes agree keeps the
-// votes' sign (walls thinner than about 4 spacings, and clouds with holes, give no votes). The
+// votes' sign (walls thinner than about 5 spacings, and clouds with holes, give no votes). The
 // other points take the sign change of the nearest decided point along the neighbour graph; the
-// global sign makes the enclosed volume (divergence theorem) positive. The result is kept only if its mean min(|w|, 1) at 4000 such
-// outside probes of the whole cloud is lower than the input's (never worse by that measure), or
-// if the votes turned a patch (a narrow slot's sides make that measure prefer a wrong side:
-// docs/benchmarks.md "Orientation by a flood fill").
+// global sign makes the enclosed volume (divergence theorem) positive. The result is kept only
+// if its mean min(|w|, 1) at 4000 such outside probes of the whole cloud is lower than the
+// input's (never worse by that measure), or if the votes turned a patch (a narrow slot's sides
+// make that measure prefer a wrong side: docs/benchmarks.md "Orientation by a flood fill").
 // thin_walls (prepare_cloud's default): the points outside the decided patches (rims, thin
 // walls' edges, sharp edges) are instead oriented again from all decided patches at once by
 // Hoppe's propagation (the minimum spanning tree grown from every decided point), so each
