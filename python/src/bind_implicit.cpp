@@ -344,8 +344,8 @@ input            sections (a section file, a SectionSet, or a list of Section / 
                  cloud (a PointCloud, or a .pcd .ply .xyz .xyzn file; .csv and .txt by their
                  content, docs/formats.md "Sections or a cloud?"): a sectioned scan's fitted
                  sections lofted into a section body, any other cloud the partition-of-unity
-                 implicit (kind cloud_pu) or, sparse, the Hermite RBF (cloud_hrbf, see fit); or an R-function model path (.rf): its zero set,
-                 normalised
+                 implicit (kind cloud_pu) or, sparse, the Hermite RBF (cloud_hrbf, see fit); or
+                 an R-function model path (.rf): its zero set, normalised
 resolution       far-field grid cells along the longest side of the box (8 .. 1024)
 band             (inner, outer) blend band in grid cells: exact near field within inner
 margin           sections: box = body bounding box + margin x its diagonal

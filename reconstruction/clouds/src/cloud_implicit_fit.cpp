@@ -443,10 +443,8 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
                                 " points");
   CloudFitInfo info;
   const detail::NeighbourIndex index(c.points);
-  // kAreaNeighbours: the k of point_areas
-  constexpr int kAreaNeighbours = 8;
   const Eigen::VectorXd area =
-      detail::point_areas(c.points, index.knn_all(kAreaNeighbours, o.threads));
+      detail::point_areas(c.points, index.knn_all(detail::kAreaNeighbours, o.threads));
   info.flipped = detail::normals_inward(c.points, c.normals, area); // flipped before fitting
   const Eigen::MatrixX3d N = info.flipped ? Eigen::MatrixX3d(-c.normals) : c.normals;
   const detail::WindingNumber winding(c.points, N, area);

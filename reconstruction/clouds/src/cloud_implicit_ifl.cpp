@@ -42,6 +42,14 @@ HeightSheet get_sheet(const double* in) {
   return s;
 }
 
+// #P by 3 matrices as the .ifl arrays store them (row-major).
+using RowMajorX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+std::vector<double> row_major(const Eigen::MatrixX3d& A) {
+  const RowMajorX3 R = A;
+  return std::vector<double>(R.data(), R.data() + R.size());
+}
+
 void require_finite(const IflBlock& b, const std::string& name, const std::vector<double>& v) {
   for (size_t i = 0; i < v.size(); ++i)
     if (!std::isfinite(v[i]))
@@ -150,13 +158,6 @@ CloudImplicit cloud_implicit_from_ifl(const IflBlock& b) {
 
 IflBlock to_ifl(const HermiteRbf& m) {
   const long n = static_cast<long>(m.points.rows());
-  auto flat = [n](const Eigen::MatrixX3d& A) { // row-major #P by 3
-    std::vector<double> v(static_cast<size_t>(3 * n));
-    for (long i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a)
-        v[static_cast<size_t>(3 * i + a)] = A(i, a);
-    return v;
-  };
   IflBlock b;
   b.kind = "cloud_hrbf";
   b.name = "model";
@@ -165,9 +166,9 @@ IflBlock to_ifl(const HermiteRbf& m) {
   b.set_f64("centre", {3}, {m.centre(0), m.centre(1), m.centre(2)});
   b.set("scale", m.scale);
   b.set("spacing", m.spacing);
-  b.set_f64("points", {n, 3}, flat(m.points));
+  b.set_f64("points", {n, 3}, row_major(m.points));
   b.set_f64("a", {n}, std::vector<double>(m.a.data(), m.a.data() + n));
-  b.set_f64("b", {n, 3}, flat(m.b));
+  b.set_f64("b", {n, 3}, row_major(m.b));
   b.set_f64("linear", {4}, {m.c, m.g(0), m.g(1), m.g(2)});
   return b;
 }
@@ -192,14 +193,9 @@ HermiteRbf hermite_rbf_from_ifl(const IflBlock& b) {
        {std::pair{"centre", &c}, {"points", &p}, {"a", &a}, {"b", &beta}, {"linear", &lin}})
     require_finite(b, name, *v);
   m.centre = Eigen::Vector3d(c[0], c[1], c[2]);
-  m.points.resize(n, 3);
-  m.b.resize(n, 3);
+  m.points = Eigen::Map<const RowMajorX3>(p.data(), n, 3);
+  m.b = Eigen::Map<const RowMajorX3>(beta.data(), n, 3);
   m.a = Eigen::Map<const Eigen::VectorXd>(a.data(), n);
-  for (long i = 0; i < n; ++i)
-    for (int k = 0; k < 3; ++k) {
-      m.points(i, k) = p[static_cast<size_t>(3 * i + k)];
-      m.b(i, k) = beta[static_cast<size_t>(3 * i + k)];
-    }
   m.c = lin[0];
   m.g = Eigen::Vector3d(lin[1], lin[2], lin[3]);
   return m;

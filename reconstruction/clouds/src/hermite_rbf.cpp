@@ -130,8 +130,8 @@ HermiteRbf fit_hermite_rbf(const PointCloud& cloud, HermiteRbfInfo* info_out) {
   const Vector3d lo = cloud.points.colwise().minCoeff(), hi = cloud.points.colwise().maxCoeff();
   const double diag = (hi - lo).norm();
   const detail::NeighbourIndex index(cloud.points);
-  constexpr int kAreaNeighbours = 8; // as fit_cloud_implicit's point_areas
-  const Eigen::MatrixXi knn = index.knn_all(int(std::min<Index>(kAreaNeighbours, n - 1)), 1);
+  const Eigen::MatrixXi knn =
+      index.knn_all(int(std::min<Index>(detail::kAreaNeighbours, n - 1)), 1);
   for (Index i = 0; i < n; ++i)
     if ((cloud.points.row(i) - cloud.points.row(knn(i, 0))).norm() <= 1e-9 * diag)
       throw std::invalid_argument("hermite rbf: points " + std::to_string(i) + " and " +

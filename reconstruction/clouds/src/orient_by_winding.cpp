@@ -40,7 +40,6 @@ constexpr double kMinPatchShare = 0.002, kMinPatchPoints = 20;
 // spacings plus kProbeSigmas noise sigmas along its normal.
 constexpr int kProbesPerPatch = 40;
 constexpr double kProbeSpacings = 2, kProbeSigmas = 3;
-constexpr int kAreaNeighbours = 8;   // point_areas' k
 constexpr Index kCheckProbes = 4000; // outside_winding's probes
 // Thin-wall sides: the neighbours searched for the other side of the wall, the offsets along the
 // normal beyond which a neighbour counts as off the point's own sheet (noise sigmas), and the
@@ -334,12 +333,12 @@ void orient_from_patches(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, const E
 Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
                                bool thin_walls) {
   const Index n = P.rows();
-  if (n < 2 * kAreaNeighbours)
+  if (n < 2 * detail::kAreaNeighbours)
     return 0;
   const Eigen::MatrixX3d N0 = N;
   const detail::NeighbourIndex index(P);
-  const Eigen::MatrixXi K = index.knn_all(std::max(k, kAreaNeighbours));
-  const Eigen::VectorXd area = detail::point_areas(P, K.leftCols(kAreaNeighbours));
+  const Eigen::MatrixXi K = index.knn_all(std::max(k, detail::kAreaNeighbours));
+  const Eigen::VectorXd area = detail::point_areas(P, K.leftCols(detail::kAreaNeighbours));
   const double sigma = n > 24 ? estimate_noise(P) : 0;
   const std::vector<int> label = patches(P, N, K, sigma);
   const std::vector<int> roots = largest_patches(label);
@@ -380,10 +379,7 @@ Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, i
     orient_from_patches(P, N, K, which, R, s);
   else
     propagate_sign_changes(N, K, which, R, s);
-  // the global sign: outward normals enclose a positive volume (divergence theorem)
-  const Eigen::RowVector3d c = P.colwise().mean();
-  const double volume = ((P.rowwise() - c).array() * N.array()).rowwise().sum().matrix().dot(area);
-  if (volume < 0)
+  if (detail::normals_inward(P, N, area)) // the global sign, by the divergence theorem
     N *= -1;
   const bool voted_flip = std::count(known.begin(), known.end(), -1) > 0; // positions decided
   if (!voted_flip && outside_winding(P, N, area, sigma) >= outside_winding(P, N0, area, sigma))

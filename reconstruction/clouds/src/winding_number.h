@@ -36,8 +36,12 @@ private:
   Eigen::MatrixX3d P_, D_; // points and a_i n_i, grouped by cluster
 };
 
+// The k of point_areas, for every caller's knn.
+constexpr int kAreaNeighbours = 8;
+
 // The area each point stands for: pi r^2 / k with r the distance to its k-th nearest neighbour
-// (the disc through the k nearest points holds about k points' shares). k = 8.
+// (the disc through the k nearest points holds about k points' shares); knn: #P by
+// kAreaNeighbours (or fewer for a tiny cloud).
 Eigen::VectorXd point_areas(const Eigen::MatrixX3d& P, const Eigen::MatrixXi& knn);
 
 // True when the normals N point into the body: outward normals make sum a_i n_i . (p_i - c) =
