@@ -172,8 +172,7 @@ void check_grid_limits(const ParsedArgs& a, const Eigen::AlignedBox3d& box,
     return;
   const bool hex = a.get("volume") == "hex";
   const double elements = n * (hex ? 1 : a.get("lattice", "bcc") == "kuhn" ? 6 : 12);
-  const long long max_elements =
-      limit_option(a, "max-elements", hex ? limits::volume_hexahedra : limits::volume_tetrahedra);
+  const long long max_elements = volume_element_limit(a);
   if (elements > double(max_elements))
     options_exceed(asked, "up to " + fmt(elements, 3) + " volume elements", max_elements,
                    "max-elements");

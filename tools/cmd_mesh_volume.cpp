@@ -110,9 +110,7 @@ AdaptRequest adapt_request_of(const ParsedArgs& a, const ImplicitFunction& f,
     return q;
   }
   q.passes = parse_int("adapt", a.get("adapt"), 1, 10);
-  q.max_elements = long(limit_option(a, "max-elements",
-                                     a.get("volume") == "hex" ? limits::volume_hexahedra
-                                                              : limits::volume_tetrahedra));
+  q.max_elements = long(volume_element_limit(a));
   q.delta = parse_double("adapt-delta", a.get("adapt-delta", "0.2"));
   if (!(q.delta >= 0 && q.delta < 1))
     throw UsageError("--adapt-delta: expected a number in [0, 1), got " + a.get("adapt-delta"));
@@ -247,6 +245,12 @@ std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions&
 }
 
 } // namespace
+
+long long volume_element_limit(const ParsedArgs& a) {
+  return limit_option(a, "max-elements",
+                      a.get("volume") == "hex" ? limits::volume_hexahedra
+                                               : limits::volume_tetrahedra);
+}
 
 bool volume_output_ok(const std::string& path) {
   return is_volume_mesh_path(path) || surface_output(path) || lower_extension(path) == ".png";

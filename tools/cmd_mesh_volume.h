@@ -31,6 +31,10 @@ struct VolumeRequest {
 // elements, .stl .obj .ply .off for the boundary surface, .png for its preview).
 bool volume_output_ok(const std::string& path);
 
+// --max-elements: the element limit of the grid and of --adapt's refined mesh (default
+// limits::volume_hexahedra with --volume hex, else limits::volume_tetrahedra).
+long long volume_element_limit(const ParsedArgs& a);
+
 // The volume options of `interlin mesh` (--volume, --boundary, --margin, --sweeps, --seed-rule,
 // --adapt, --adapt-delta, --adapt-var, --max-elements) for the parser.
 std::vector<OptionSpec> volume_options();
