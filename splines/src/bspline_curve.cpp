@@ -69,19 +69,26 @@ MatrixXd evaluate(const PiecewiseCurve& c, const VectorXd& u, int deriv) {
   if (deriv < 0)
     throw std::invalid_argument("derivative order must be >= 0");
   const int p = c.degree;
-  MatrixXd out = MatrixXd::Zero(u.size(), c.coeffs.cols());
+  const Index dim = c.coeffs.cols();
+  MatrixXd out = MatrixXd::Zero(u.size(), dim);
   if (deriv > p)
     return out;
+  // q (q - 1) ... (q - deriv + 1): the factor of coefficient q in the deriv-th derivative
+  std::vector<double> falling(size_t(p) + 1, 1.0);
+  for (int q = deriv; q <= p; ++q)
+    for (int m = 0; m < deriv; ++m)
+      falling[size_t(q)] *= q - m;
+  // Scalar Horner per coordinate: a dynamic-size row expression per step costs several times more.
   for (Index i = 0; i < u.size(); ++i) {
     double ui = u(i);
     const Index j = locate(c, ui);
     const double h = ui - c.breaks(j);
-    const auto block = c.coeffs.middleRows(j * (p + 1), p + 1);
-    for (int q = p; q >= deriv; --q) {
-      double falling = 1;
-      for (int m = 0; m < deriv; ++m)
-        falling *= q - m;
-      out.row(i) = out.row(i) * h + falling * block.row(q);
+    for (Index d = 0; d < dim; ++d) {
+      const double* a = &c.coeffs(j * (p + 1), d);
+      double sum = 0;
+      for (int q = p; q >= deriv; --q)
+        sum = sum * h + falling[size_t(q)] * a[q];
+      out(i, d) = sum;
     }
   }
   return out;
