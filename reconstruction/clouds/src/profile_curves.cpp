@@ -53,7 +53,8 @@ Eigen::VectorXd nearest_samples(const PiecewiseCurve& pc, const MatrixXd& P) {
 
 // Arc-length share plus kTurningShare x turning-angle share per interval.
 Eigen::VectorXd turning_weights(const BSplineCurve& c, const Eigen::VectorXd& t) {
-  const MatrixXd C = evaluate(c, t), T = evaluate(c, t, 1);
+  const PiecewiseCurve pc = to_piecewise(c);
+  const MatrixXd C = evaluate(pc, t), T = evaluate(pc, t, 1);
   const Index n = t.size() - 1;
   Eigen::VectorXd ds(n), dtheta(n);
   for (Index i = 0; i < n; ++i) {
