@@ -25,8 +25,9 @@
 // malformed number, is a usage error: one line on stderr, exit 2.)
 // (--fit: one more interlin row per --fit, with these CloudFitOptions changed: support,
 // fit_ball, min_points, max_depth, noise (sigma in cm), noise_x (a multiple of estimate_noise's
-// sigma), noise_aware (0: off), acceptance_per_rho, sample_coarse (0: off); for sweeps,
-// docs/benchmarks.md "What limits the unstructured fit" and "A noise-aware neighbourhood".)
+// sigma), noise_aware (0: off), acceptance_per_rho, sample_coarse (0: off), exterior_side (0:
+// off); for sweeps, docs/benchmarks.md "What limits the unstructured fit" and "A noise-aware
+// neighbourhood".)
 // (--diagnose: per method a line "distances:" with the quantiles of both distance directions in
 // units of the case's sigma and the share of the Chamfer from distances above 3 sigma.)
 // (--floor: per noisy case with a truth a line "floor:" with the noisy points' own distances to the
@@ -149,9 +150,11 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
       used = 0;
     }
     if (eq == std::string::npos || used != item.size() - eq - 1 ||
-        !(v > 0 || ((key == "noise_aware" || key == "sample_coarse") && v == 0)))
-      throw std::invalid_argument(
-          "--fit wants KEY=POSITIVE (noise_aware, sample_coarse: 0 or 1), not '" + item + "'");
+        !(v > 0 ||
+          ((key == "noise_aware" || key == "sample_coarse" || key == "exterior_side") && v == 0)))
+      throw std::invalid_argument("--fit wants KEY=POSITIVE (noise_aware, sample_coarse, "
+                                  "exterior_side: 0 or 1), not '" +
+                                  item + "'");
     if (key == "support")
       o.support = v;
     else if (key == "fit_ball")
@@ -166,6 +169,8 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
       o.noise_aware = v >= 1;
     else if (key == "sample_coarse")
       o.sample_coarse = v >= 1;
+    else if (key == "exterior_side")
+      o.exterior_side = v >= 1;
     else if (key == "acceptance_per_rho")
       o.acceptance_per_rho = v;
     else if (key == "noise_x")
@@ -173,7 +178,8 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
     else
       throw std::invalid_argument("--fit: unknown key '" + key +
                                   "' (known: support, fit_ball, min_points, max_depth, noise, "
-                                  "noise_x, noise_aware, acceptance_per_rho, sample_coarse)");
+                                  "noise_x, noise_aware, acceptance_per_rho, sample_coarse, "
+                                  "exterior_side)");
   }
   return o;
 }

@@ -166,8 +166,9 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
             << "; point spacing " << fmt(info.spacing, 4) << "\n";
   std::cout << "  octree       " << info.leaves << " leaves (" << info.two_sheet_leaves
             << " with two sheets, " << info.far_leaves << " far from the points, "
-            << info.sign_fixed_leaves << " re-signed by the winding number), depth " << info.depth
-            << ", " << info.min_points << " points per fit"
+            << info.sign_fixed_leaves << " re-signed by the winding number, "
+            << info.exterior_negated_leaves << " negated to the flood fill's side), depth "
+            << info.depth << ", " << info.min_points << " points per fit"
             << (info.flipped ? "; the normals pointed inward: F negated" : "") << "\n";
   std::cout << "  fit          |F| / |grad F| at the points: rms " << fmt(info.rms_distance, 3)
             << ", max " << fmt(info.max_distance, 3) << "; " << fmt(100 * info.within_3_sigma, 4)

@@ -61,11 +61,12 @@ def test_implicit_of_a_cloud_file_is_the_clis_model(scan):
     assert M.report["read"] == 2500 and M.report["kept"] > 2450
     assert not M.report["normals_estimated"]
     assert M.report["within_3_sigma"] > 0.95
-    # The octree counts are the CLI summary's: "N leaves (T with two sheets, F far ..., S re-signed".
+    # The octree counts are the CLI summary's: "N leaves (T with two sheets, F far ..., S re-signed
+    # ..., E negated ...".
     octree = next(l for l in summary.splitlines() if l.strip().startswith("octree"))
     counts = [int(w) for w in octree.replace("(", " ").replace(",", " ").split() if w.isdigit()]
-    assert counts[:4] == [M.report[k] for k in
-                          ("leaves", "two_sheet_leaves", "far_leaves", "sign_fixed_leaves")]
+    assert counts[:5] == [M.report[k] for k in ("leaves", "two_sheet_leaves", "far_leaves",
+                                                "sign_fixed_leaves", "exterior_negated_leaves")]
     assert M.report["patches_flipped"] == 0  # the file's normals agree: no re-orientation
     P = RNG.uniform(-1.3, 1.3, (300, 3))
     # The fit is deterministic (threads do not change it): the CLI's model, value for value.

@@ -1,6 +1,7 @@
 // The outside of a closed scan by a voxel flood fill (exterior_side.h).
 #include "exterior_side.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -12,23 +13,19 @@ namespace {
 constexpr long kMaxVoxels = 1L << 26;
 constexpr int kPadding = 2;        // free voxels around the shell on every side
 constexpr double kMarchVoxels = 6; // how far a vote looks for a free voxel along the normal
-enum : std::uint8_t { kInside = 0, kShell = 1, kOutside = 2 };
+using Grid = ExteriorGrid;
+constexpr std::uint8_t kInside = Grid::kInside, kShell = Grid::kShell, kOutside = Grid::kOutside;
 
-struct Grid {
-  Eigen::Array3d lo;
-  double h = 0;
-  std::array<long, 3> n{};
-  std::vector<std::uint8_t> state;
-
-  long index(long x, long y, long z) const { return (z * n[1] + y) * n[0] + x; }
-  std::array<long, 3> cell(const Eigen::Array3d& p) const {
-    const Eigen::Array3d c = ((p - lo) / h).floor();
-    return {long(c(0)), long(c(1)), long(c(2))};
-  }
-  bool inside_grid(const std::array<long, 3>& c) const {
-    return c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < n[0] && c[1] < n[1] && c[2] < n[2];
-  }
-};
+long index(const Grid& g, long x, long y, long z) {
+  return (z * g.n[1] + y) * g.n[0] + x;
+}
+std::array<long, 3> cell(const Grid& g, const Eigen::Array3d& p) {
+  const Eigen::Array3d c = ((p - g.lo) / g.h).floor();
+  return {long(c(0)), long(c(1)), long(c(2))};
+}
+bool inside_grid(const Grid& g, const std::array<long, 3>& c) {
+  return c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < g.n[0] && c[1] < g.n[1] && c[2] < g.n[2];
+}
 
 // The grid around P, its voxels all free (kInside until the flood fill).
 Grid empty_grid(const Eigen::MatrixX3d& P, double voxel) {
@@ -54,11 +51,11 @@ Grid empty_grid(const Eigen::MatrixX3d& P, double voxel) {
 // Every voxel within one voxel (26-neighbourhood) of a point's voxel becomes shell.
 void mark_shell(Grid& g, const Eigen::MatrixX3d& P) {
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    const auto c = g.cell(P.row(i).transpose().array());
+    const auto c = cell(g, P.row(i).transpose().array());
     for (long dz = -1; dz <= 1; ++dz)
       for (long dy = -1; dy <= 1; ++dy)
         for (long dx = -1; dx <= 1; ++dx)
-          g.state[size_t(g.index(c[0] + dx, c[1] + dy, c[2] + dz))] = kShell;
+          g.state[size_t(index(g, c[0] + dx, c[1] + dy, c[2] + dz))] = kShell;
   }
 }
 
@@ -66,10 +63,10 @@ void mark_shell(Grid& g, const Eigen::MatrixX3d& P) {
 void flood_outside(Grid& g) {
   std::vector<long> queue;
   auto visit = [&](long x, long y, long z) {
-    std::uint8_t& s = g.state[size_t(g.index(x, y, z))];
+    std::uint8_t& s = g.state[size_t(index(g, x, y, z))];
     if (s == kInside) {
       s = kOutside;
-      queue.push_back(g.index(x, y, z));
+      queue.push_back(index(g, x, y, z));
     }
   };
   for (long z = 0; z < g.n[2]; ++z)
@@ -98,10 +95,10 @@ void flood_outside(Grid& g) {
 // The state of the first non-shell voxel from p along d (kShell when none within kMarchVoxels).
 std::uint8_t first_free(const Grid& g, const Eigen::Array3d& p, const Eigen::Array3d& d) {
   for (double t = 0.5 * g.h; t <= kMarchVoxels * g.h; t += 0.5 * g.h) {
-    const auto c = g.cell(p + t * d);
-    if (!g.inside_grid(c))
+    const auto c = cell(g, p + t * d);
+    if (!inside_grid(g, c))
       return kOutside;
-    const std::uint8_t s = g.state[size_t(g.index(c[0], c[1], c[2]))];
+    const std::uint8_t s = g.state[size_t(index(g, c[0], c[1], c[2]))];
     if (s != kShell)
       return s;
   }
@@ -110,14 +107,55 @@ std::uint8_t first_free(const Grid& g, const Eigen::Array3d& p, const Eigen::Arr
 
 } // namespace
 
+ExteriorGrid exterior_grid(const Eigen::MatrixX3d& P, double voxel) {
+  Grid g = empty_grid(P, voxel);
+  mark_shell(g, P);
+  flood_outside(g);
+  return g;
+}
+
+int exterior_side(const ExteriorGrid& g, const Eigen::Vector3d& x) {
+  const auto c = cell(g, x.array());
+  if (!inside_grid(g, c))
+    return 1;
+  const std::uint8_t s = g.state[size_t(index(g, c[0], c[1], c[2]))];
+  return s == kOutside ? 1 : s == kInside ? -1 : 0;
+}
+
+ExteriorSamples shell_neighbours(const ExteriorGrid& g, long most) {
+  std::vector<long> found;
+  const long step[3] = {1, g.n[0], g.n[0] * g.n[1]};
+  for (long z = 1; z + 1 < g.n[2]; ++z)
+    for (long y = 1; y + 1 < g.n[1]; ++y)
+      for (long x = 1; x + 1 < g.n[0]; ++x) {
+        const long v = index(g, x, y, z);
+        if (g.state[size_t(v)] == kShell)
+          continue;
+        bool next = false;
+        for (long s : step)
+          next = next || g.state[size_t(v + s)] == kShell || g.state[size_t(v - s)] == kShell;
+        if (next)
+          found.push_back(v);
+      }
+  const size_t k =
+      std::max<size_t>(1, (found.size() + size_t(most) - 1) / size_t(std::max(most, 1L)));
+  ExteriorSamples r;
+  r.X.resize(Eigen::Index((found.size() + k - 1) / k), 3);
+  for (size_t i = 0; i < found.size(); i += k) {
+    const long v = found[i], x = v % g.n[0], y = (v / g.n[0]) % g.n[1], z = v / (g.n[0] * g.n[1]);
+    r.X.row(Eigen::Index(i / k)) =
+        (g.lo + g.h * (Eigen::Array3d(double(x), double(y), double(z)) + 0.5)).matrix().transpose();
+    r.side.push_back(g.state[size_t(v)] == kOutside ? 1 : -1);
+  }
+  return r;
+}
+
 std::vector<signed char> exterior_votes(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
                                         double voxel) {
   std::vector<signed char> vote(size_t(P.rows()), 0);
   if (P.rows() == 0 || !(voxel > 0))
     return vote;
-  Grid g = empty_grid(P, voxel);
-  mark_shell(g, P);
-  flood_outside(g);
+  const Grid g = exterior_grid(P, voxel);
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     const Eigen::Array3d p = P.row(i).transpose().array(), n = N.row(i).transpose().array();
     const std::uint8_t ahead = first_free(g, p, n), behind = first_free(g, p, -n);

@@ -8,9 +8,40 @@
 // or the winding number of a wrongly oriented cloud, this reads only the points' positions.
 
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <vector>
 
 namespace interlin::detail {
+
+// Voxels of this many point spacings: finer ones let the fill leak through the sampling's gaps,
+// coarser ones vote wrong more often (docs/benchmarks.md, "Orientation by a flood fill").
+constexpr double kVoxelSpacings = 1.5;
+
+// The flood-filled voxel grid: voxel (x, y, z) is the cube lo + h [x, x + 1] x ... of state
+// kInside, kShell or kOutside.
+struct ExteriorGrid {
+  enum : std::uint8_t { kInside = 0, kShell = 1, kOutside = 2 };
+  Eigen::Array3d lo;
+  double h = 0;
+  std::array<long, 3> n{};
+  std::vector<std::uint8_t> state;
+};
+
+// The grid of points P with voxels of size `voxel` (doubled until it holds at most 2^26), its
+// shell marked and its outside flood-filled. P #P by 3, not empty; voxel > 0.
+ExteriorGrid exterior_grid(const Eigen::MatrixX3d& P, double voxel);
+
+// The side of x the grid reads: +1 outside (also beyond the grid), -1 inside, 0 in the shell.
+int exterior_side(const ExteriorGrid& g, const Eigen::Vector3d& x);
+
+// Free voxels next to the shell (a face neighbour in it): their centres (#S by 3) and sides (+1
+// outside, -1 inside), every k-th in storage order with k chosen so that #S <= most.
+struct ExteriorSamples {
+  Eigen::MatrixX3d X;
+  std::vector<int> side;
+};
+ExteriorSamples shell_neighbours(const ExteriorGrid& g, long most);
 
 // The side each normal points to.
 // Inputs:  P #P by 3 points, N #P by 3 unit normals (any orientation), voxel: the voxel size

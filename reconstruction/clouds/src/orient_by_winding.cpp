@@ -57,10 +57,10 @@ constexpr double kWallSpacings = 0.5;
 // turned is never turned back (its tests then both say outward). At most kMaxSidePasses.
 constexpr int kMaxSidePasses = 10;
 
-// The flood fill's votes (exterior_side.h) on voxels of kVoxelSpacings point spacings (finer ones
-// leak through the sampling's gaps: the UAV at 1 spacing); a patch takes the votes' sign when at
+// The flood fill's votes (exterior_side.h, voxels of kVoxelSpacings point spacings: finer ones
+// leak through the sampling's gaps, the UAV at 1 spacing); a patch takes the votes' sign when at
 // least kVotedShare of its points vote and kVoteAgreement of the votes agree.
-constexpr double kVoxelSpacings = 1.5, kVotedShare = 0.2, kVoteAgreement = 0.9;
+constexpr double kVotedShare = 0.2, kVoteAgreement = 0.9;
 
 int find(std::vector<int>& parent, int i) {
   while (parent[size_t(i)] != i)
@@ -128,7 +128,8 @@ std::vector<int> largest_patches(const std::vector<int>& label) {
 // entry, the undecided points, is not read): +1 or -1 where they decide it, 0 where not.
 std::vector<int> voted_signs(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
                              const std::vector<std::vector<Index>>& rows, double spacing) {
-  const std::vector<signed char> vote = detail::exterior_votes(P, N, kVoxelSpacings * spacing);
+  const std::vector<signed char> vote =
+      detail::exterior_votes(P, N, detail::kVoxelSpacings * spacing);
   std::vector<int> known(rows.size() - 1, 0);
   for (size_t r = 0; r < known.size(); ++r) {
     double plus = 0, minus = 0;
