@@ -19,6 +19,10 @@ constexpr std::uint8_t kInside = Grid::kInside, kShell = Grid::kShell, kOutside 
 long index(const Grid& g, long x, long y, long z) {
   return (z * g.n[1] + y) * g.n[0] + x;
 }
+// The voxel (x, y, z) of storage index v (index's inverse).
+std::array<long, 3> coords(const Grid& g, long v) {
+  return {v % g.n[0], (v / g.n[0]) % g.n[1], v / (g.n[0] * g.n[1])};
+}
 std::array<long, 3> cell(const Grid& g, const Eigen::Array3d& p) {
   const Eigen::Array3d c = ((p - g.lo) / g.h).floor();
   return {long(c(0)), long(c(1)), long(c(2))};
@@ -75,8 +79,7 @@ void flood_outside(Grid& g) {
         if (x == 0 || y == 0 || z == 0 || x == g.n[0] - 1 || y == g.n[1] - 1 || z == g.n[2] - 1)
           visit(x, y, z);
   for (size_t head = 0; head < queue.size(); ++head) {
-    const long v = queue[head], x = v % g.n[0], y = (v / g.n[0]) % g.n[1],
-               z = v / (g.n[0] * g.n[1]);
+    const auto [x, y, z] = coords(g, queue[head]);
     if (x > 0)
       visit(x - 1, y, z);
     if (x + 1 < g.n[0])
@@ -142,10 +145,10 @@ ExteriorSamples shell_neighbours(const ExteriorGrid& g, long most) {
   ExteriorSamples r;
   r.X.resize(Eigen::Index((found.size() + k - 1) / k), 3);
   for (size_t i = 0; i < found.size(); i += k) {
-    const long v = found[i], x = v % g.n[0], y = (v / g.n[0]) % g.n[1], z = v / (g.n[0] * g.n[1]);
+    const auto [x, y, z] = coords(g, found[i]);
     r.X.row(Eigen::Index(i / k)) =
         (g.lo + g.h * (Eigen::Array3d(double(x), double(y), double(z)) + 0.5)).matrix().transpose();
-    r.side.push_back(g.state[size_t(v)] == kOutside ? 1 : -1);
+    r.side.push_back(g.state[size_t(found[i])] == kOutside ? 1 : -1);
   }
   return r;
 }
