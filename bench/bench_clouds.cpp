@@ -399,6 +399,14 @@ void save_obj(const std::string& path, const Eigen::MatrixXd& V, const Eigen::Ma
     out << "f " << F(i, 0) + 1 << ' ' << F(i, 1) + 1 << ' ' << F(i, 2) + 1 << '\n';
 }
 
+// A method's label as part of a file name: '/' (interlin's "cell spacing / 2") and spaces become
+// '_'.
+std::string file_name(std::string label) {
+  std::replace_if(
+      label.begin(), label.end(), [](char ch) { return ch == '/' || ch == ' '; }, '_');
+  return label;
+}
+
 // Reconstructs, then (after its memory is read) measures against the truth when the case has
 // one, else by hold-out.
 Result run_child(const Method& m, const CloudCase& c, int threads) {
@@ -410,7 +418,7 @@ Result run_child(const Method& m, const CloudCase& c, int threads) {
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.peak_mb = double(status_kb("VmHWM:") - before) / 1024.0;
     if (const char* dir = std::getenv(kSaveVariable))
-      save_obj(std::string(dir) + "/" + c.name + "." + m.label() + ".obj", r.V, r.F);
+      save_obj(std::string(dir) + "/" + c.name + "." + file_name(m.label()) + ".obj", r.V, r.F);
     out.vertices = static_cast<long>(r.V.rows());
     out.leaves = r.info.leaves;
     out.noise = r.info.noise;
