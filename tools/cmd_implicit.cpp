@@ -63,7 +63,8 @@ Point clouds:
   --outliers K           statistical outlier removal with K neighbours (default 16, 0: off)
   --outlier-ratio R      ... removing points beyond R standard deviations (default 3)
   --voxel LEAF           voxel-grid downsampling with cubes of side LEAF (default 0: off)
-  --normal-neighbours K  neighbours of the normal estimation (default 16)
+  --normal-neighbours K  neighbours of the normal estimation: auto (default: 16, more where
+                         the noise is large against the point spacing) or a number >= 3
   --fit METHOD           unstructured fit: auto (default: for clouds of at most 500 points
                          with normals in the file, the one of pu and hrbf whose five-fold
                          hold-out is closer; else pu), pu (partition of unity of local fits,

@@ -46,7 +46,8 @@ CloudPrepOptions prep_options(const ParsedArgs& a, const Progress& progress) {
   o.normals = n == "file"       ? NormalSource::file
               : n == "estimate" ? NormalSource::estimate
                                 : NormalSource::automatic;
-  o.normal_neighbours = parse_int("normal-neighbours", a.get("normal-neighbours", "16"), 3, 1000);
+  const std::string k = a.get("normal-neighbours", "auto");
+  o.normal_neighbours = k == "auto" ? 0 : parse_int("normal-neighbours", k, 3, 1000);
   o.threads = parse_int("threads", a.get("threads", "0"), 0, 4096);
   o.progress = progress;
   return o;
@@ -147,7 +148,8 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
     for (const std::string& n : notes)
       std::cerr << "note: " << n << "\n";
   std::cout << "  normals      "
-            << (rep.normals_estimated    ? "estimated (PCL) and oriented"
+            << (rep.normals_estimated ? "estimated (PCL, k = " +
+                                            std::to_string(rep.normal_neighbours) + ") and oriented"
                 : rep.normals_reoriented ? "from the file, re-oriented"
                                          : "from the file")
             << (rep.patches_flipped > 0

@@ -107,6 +107,10 @@ void bind_cloud_steps(py::module_& m) {
         py::arg("samples") = 2000, release_gil(),
         "Standard deviation of the scan noise normal to the surface (median of local quadric "
         "residuals).");
+  m.def("normal_neighbours_for_noise", &normal_neighbours_for_noise, py::arg("P"), py::arg("sigma"),
+        py::arg("k_min") = 16, py::arg("k_max") = 64, py::arg("samples") = 2000, release_gil(),
+        "Neighbours for PCA normals at noise sigma: 2 sqrt(pi) sigma / (spacing 0.1 rad), "
+        "clamped to [k_min, k_max].");
   m.def(
       "prepare_cloud",
       [](const PointCloud& cloud, const std::string& path, int outlier_neighbours,
@@ -132,11 +136,12 @@ void bind_cloud_steps(py::module_& m) {
       },
       py::arg("cloud"), py::arg("path") = "<cloud>", py::arg("outlier_neighbours") = 16,
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
-      py::arg("normal_neighbours") = 16, py::arg("orient_neighbours") = 10, py::arg("threads") = 0,
+      py::arg("normal_neighbours") = 0, py::arg("orient_neighbours") = 10, py::arg("threads") = 0,
       R"(The preparation steps in order: repeated points and degenerate clouds, statistical
 outlier removal (outlier_neighbours 0: off), voxel downsampling (voxel 0: off), normals ("auto":
-the file's when consistent, re-oriented or estimated; "file"; "estimate") and their orientation
--> (PointCloud, report dict, notes).)");
+the file's when consistent, re-oriented or estimated; "file"; "estimate"; normal_neighbours 0:
+k from the noise, normal_neighbours_for_noise) and their orientation -> (PointCloud, report
+dict, notes).)");
 }
 
 void bind_cloud_fit(py::module_& m) {
@@ -194,6 +199,7 @@ py::dict cloud_report_dict(const CloudPrepReport& r) {
       field("outliers", &CloudPrepReport::outliers), field("kept", &CloudPrepReport::kept),
       field("normals_estimated", &CloudPrepReport::normals_estimated),
       field("normals_reoriented", &CloudPrepReport::normals_reoriented),
+      field("normal_neighbours", &CloudPrepReport::normal_neighbours),
       field("disagreement", &CloudPrepReport::disagreement),
       field("components", &CloudPrepReport::components),
       field("patches_flipped", &CloudPrepReport::patches_flipped));

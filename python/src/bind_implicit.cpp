@@ -308,9 +308,10 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
                                       {"none", SliceKind::none}},
                                      slices, "slices");
         if (!(noise >= 0) || !(outlier_ratio > 0) || !(voxel >= 0) || max_depth < 1 ||
-            max_depth > 20 || outliers < 0 || normal_neighbours < 3)
-          throw py::value_error("noise >= 0, 1 <= max_depth <= 20, outliers >= 0, "
-                                "outlier_ratio > 0, voxel >= 0, normal_neighbours >= 3 expected");
+            max_depth > 20 || outliers < 0 || (normal_neighbours != 0 && normal_neighbours < 3))
+          throw py::value_error(
+              "noise >= 0, 1 <= max_depth <= 20, outliers >= 0, "
+              "outlier_ratio > 0, voxel >= 0, normal_neighbours 0 or >= 3 expected");
         a.prep.outlier_neighbours = outliers, a.prep.outlier_ratio = outlier_ratio;
         a.prep.voxel = voxel;
         a.prep.normals = choice<NormalSource>({{"auto", NormalSource::automatic},
@@ -336,8 +337,7 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
       py::arg("param") = "chord", py::arg("span") = "auto", py::arg("slices") = "auto",
       py::arg("noise") = 0.0, py::arg("max_depth") = 12, py::arg("outliers") = 16,
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
-      py::arg("normal_neighbours") = 16, py::arg("span_smoothing") = "auto",
-      py::arg("fit") = "auto",
+      py::arg("normal_neighbours") = 0, py::arg("span_smoothing") = "auto", py::arg("fit") = "auto",
       R"(The implicit equation of a body, as `interlin implicit` -> ImplicitModel.
 input            sections (a section file, a SectionSet, or a list of Section / (P, 3) arrays):
                  the body of the loft through every section, closed by ruled end caps; a point
@@ -366,7 +366,8 @@ span_smoothing   sectioned scans: "auto" (the sections become isocurves of one l
                  surface through all slices when Mallows' C_p prefers it; report span_control:
                  its control points along the span, 0 when not) or "off"
 outliers, outlier_ratio, voxel, normals, normal_neighbours   the preparation steps (as
-                 prepare_cloud; outliers 0: off, voxel 0: off).)");
+                 prepare_cloud; outliers 0: off, voxel 0: off, normal_neighbours 0: from the
+                 noise).)");
   m.def("ifl_kinds", &ifl_kinds, "The model kinds .ifl files may hold (load_model reads them).");
 }
 

@@ -2,9 +2,11 @@
 
 #include "interlin/reconstruction/clouds/cloud_checks.h"
 #include "interlin/reconstruction/clouds/cloud_filters.h"
+#include "interlin/reconstruction/clouds/noise_level.h"
 #include "interlin/reconstruction/clouds/orient_normals.h"
 #include "interlin/reconstruction/io/input_error.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace interlin {
@@ -22,13 +24,27 @@ namespace {
 
 void check_options(const CloudPrepOptions& o) {
   if (o.outlier_neighbours < 0 || !(o.outlier_ratio > 0) || !(o.voxel >= 0) ||
-      o.normal_neighbours < 3 || o.orient_neighbours < 1)
+      (o.normal_neighbours != 0 && o.normal_neighbours < 3) || o.orient_neighbours < 1)
     throw std::invalid_argument("prepare_cloud: bad options");
 }
 
 void say(const CloudPrepOptions& o, const std::string& s) {
   if (o.progress)
     o.progress(s);
+}
+
+// The k of the normals: options.normal_neighbours, or from the noise when it is 0 (at least
+// kNormalNeighbours, which small clouds keep: estimate_noise needs more than 24 points; at most
+// kMostNormalNeighbours, wider neighbourhoods round off the edges they straddle).
+int normal_neighbours(const Eigen::MatrixX3d& P, int asked) {
+  constexpr int kNormalNeighbours = 16, kMostNormalNeighbours = 64;
+  if (asked > 0)
+    return asked;
+  if (P.rows() <= 24)
+    return kNormalNeighbours;
+  const int most = int(std::min<Eigen::Index>(kMostNormalNeighbours, P.rows() - 1));
+  return normal_neighbours_for_noise(P, estimate_noise(P), kNormalNeighbours,
+                                     std::max(most, kNormalNeighbours));
 }
 
 } // namespace
@@ -59,9 +75,11 @@ void cloud_normals(const std::string& path, PointCloud& c, const CloudPrepOption
     throw_input_error(path, 0,
                       "the file has no normals (fields nx, ny, nz); estimate them instead");
   if (o.normals == NormalSource::estimate || !c.has_normals()) {
-    say(o, "normal estimation (k = " + std::to_string(o.normal_neighbours) + ")");
-    c.normals = estimate_normals(c.points, o.normal_neighbours, o.threads);
+    const int k = normal_neighbours(c.points, o.normal_neighbours);
+    say(o, "normal estimation (k = " + std::to_string(k) + ")");
+    c.normals = estimate_normals(c.points, k, o.threads);
     r.normals_estimated = true;
+    r.normal_neighbours = k;
   } else if (o.normals == NormalSource::automatic) {
     r.disagreement = orientation_disagreement(c.points, c.normals, o.orient_neighbours);
     r.normals_reoriented = r.disagreement > kOrientedDisagreement;

@@ -22,7 +22,8 @@ struct CloudPrepOptions {
   double outlier_ratio = 3.0;  // ... and the standard-deviation multiple
   double voxel = 0;            // voxel-grid downsampling leaf size (0: off)
   NormalSource normals = NormalSource::automatic;
-  int normal_neighbours = 16; // PCL normal estimation: k nearest neighbours
+  int normal_neighbours = 0;  // PCL normal estimation: k nearest neighbours (0: from the noise,
+                              // normal_neighbours_for_noise, at least 16)
   int orient_neighbours = 10; // orientation graph: k nearest neighbours
   bool thin_walls = true;     // orient_by_winding_number: thin walls and edges (false: as before)
   int threads = 0;
@@ -32,6 +33,7 @@ struct CloudPrepOptions {
 struct CloudPrepReport {
   Eigen::Index read = 0, distinct = 0, outliers = 0, kept = 0;
   bool normals_estimated = false, normals_reoriented = false;
+  int normal_neighbours = 0;        // the k of the estimated normals (0: not estimated)
   double disagreement = 0;          // orientation_disagreement of the file's normals (automatic)
   Eigen::Index components = 0;      // parts of the orientation graph
   Eigen::Index patches_flipped = 0; // normals negated by orient_by_winding_number
