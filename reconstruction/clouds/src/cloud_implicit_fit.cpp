@@ -300,12 +300,19 @@ void negate(LocalFit& f) {
 // of the lattice points of its support ball that the fill labels (at least kExteriorLeast of
 // kExteriorLattice^3) is negated: its normals were wrong where the winding number cannot tell,
 // e.g. a thin edge's, and its wrong sign made a spurious sheet of F off the edge.
-bool check_exterior(const detail::ExteriorGrid& g, LocalFit& f) {
+// A leaf whose ball holds no point (nearest point i0 at d0 >= its radius) and whose labelled
+// lattice points all lie on one side is off the surface: where Q has the other sign at
+// kExteriorLeast of them, it takes the far plane on the fill's side. Its side came from the
+// winding number alone (a far leaf) or its parent's fit reached over it (a gap leaf), and near a
+// thin edge both can be wrong: a blob of F > 0 half a millimetre off the blade's tip corner
+// (docs/benchmarks.md, "Far leaves on the flood fill's side").
+bool check_exterior(const Points& pts, const detail::ExteriorGrid& g, int i0, double d0,
+                    LocalFit& f) {
   // measured 5, 7, 9, 11 lattice points per axis, at least 4, 8, 16 of them, shares 0.6 to 0.9
   // on the blades, the UAV, the car and the impeller (docs/benchmarks.md): 9, 8, 0.9 best
   constexpr int kExteriorLattice = 9, kExteriorLeast = 8;
   constexpr double kExteriorShare = 0.9;
-  int agree = 0, disagree = 0;
+  int agree = 0, disagree = 0, inside = 0, outside = 0;
   for (int i = 0; i < kExteriorLattice; ++i)
     for (int j = 0; j < kExteriorLattice; ++j)
       for (int k = 0; k < kExteriorLattice; ++k) {
@@ -316,10 +323,15 @@ bool check_exterior(const detail::ExteriorGrid& g, LocalFit& f) {
         const Vector3d x = f.centre + f.radius * t;
         const int side = detail::exterior_side(g, x);
         const double q = detail::fit_value(f, x, nullptr);
+        (side < 0 ? inside : outside) += side != 0;
         if (side == 0 || q == 0)
           continue;
         ((q > 0) == (side < 0) ? agree : disagree)++;
       }
+  if (d0 >= f.radius && (inside == 0 || outside == 0) && disagree >= kExteriorLeast) {
+    far_plane(pts, i0, inside > 0 ? 1.0 : 0.0, f);
+    return true;
+  }
   if (disagree < kExteriorLeast || disagree < kExteriorShare * (agree + disagree))
     return false;
   negate(f);
@@ -474,8 +486,8 @@ std::uint64_t morton(const LocalFit& f, int depth) {
 // the shell (a hole the shell does not close lets the fill into the inside: 54 to 72 % agreement
 // on the valve and the blade with a missing patch, 99.9 to 100 % on the closed scans), then
 // check_exterior on every leaf. Returns the leaves negated.
-long negate_by_exterior(const Points& pts, double spacing, int threads, std::vector<Cell>& cells,
-                        const std::vector<size_t>& leaves) {
+long negate_by_exterior(const Points& pts, const detail::NeighbourIndex& index, double spacing,
+                        int threads, std::vector<Cell>& cells, const std::vector<size_t>& leaves) {
   constexpr long kTrustProbes = 2000;
   constexpr double kTrustShare = 0.97;
   const detail::ExteriorGrid grid = detail::exterior_grid(pts.P, detail::kVoxelSpacings * spacing);
@@ -487,7 +499,11 @@ long negate_by_exterior(const Points& pts, double spacing, int threads, std::vec
     return 0;
   std::vector<char> negated(leaves.size(), 0);
   detail::parallel_for(long(leaves.size()), detail::resolve_threads(threads), [&](long t, int) {
-    negated[size_t(t)] = check_exterior(grid, cells[leaves[size_t(t)]].fit);
+    LocalFit& f = cells[leaves[size_t(t)]].fit;
+    std::vector<int> idx;
+    std::vector<double> d2;
+    index.knn(f.centre, 1, idx, d2);
+    negated[size_t(t)] = check_exterior(pts, grid, idx[0], std::sqrt(d2[0]), f);
   });
   return long(std::count(negated.begin(), negated.end(), 1));
 }
@@ -579,8 +595,14 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
                          fixed[size_t(t)] = check_sign(pts, index, cells[leaves[size_t(t)]].fit);
                        });
   info.sign_fixed_leaves = std::count(fixed.begin(), fixed.end(), 1);
-  if (o.exterior_side)
-    info.exterior_negated_leaves = negate_by_exterior(pts, info.spacing, o.threads, cells, leaves);
+  if (o.exterior_side) { // far leaves too: their sides came from the winding number alone
+    std::vector<size_t> all;
+    for (size_t i = 0; i < cells.size(); ++i)
+      if (cells[i].child < 0)
+        all.push_back(i);
+    info.exterior_negated_leaves =
+        negate_by_exterior(pts, index, info.spacing, o.threads, cells, all);
+  }
   for (const Cell& cell : cells)
     if (cell.child < 0) {
       m.fits.push_back(cell.fit);
