@@ -300,14 +300,14 @@ void negate(LocalFit& f) {
 // of the lattice points of its support ball that the fill labels (at least kExteriorLeast of
 // kExteriorLattice^3) is negated: its normals were wrong where the winding number cannot tell,
 // e.g. a thin edge's, and its wrong sign made a spurious sheet of F off the edge.
-// A leaf whose ball holds no point (nearest point i0 at d0 >= its radius) and whose labelled
+// A leaf whose ball holds no point (its nearest point beyond its radius) and whose labelled
 // lattice points all lie on one side is off the surface: where Q has the other sign at
 // kExteriorLeast of them, it takes the far plane on the fill's side. Its side came from the
 // winding number alone (a far leaf) or its parent's fit reached over it (a gap leaf), and near a
-// thin edge both can be wrong: a blob of F > 0 half a millimetre off the blade's tip corner
+// thin edge both can be wrong: a blob of F > 0 up to 0.77 cm off the blade's tip corner
 // (docs/benchmarks.md, "Far leaves on the flood fill's side").
-bool check_exterior(const Points& pts, const detail::ExteriorGrid& g, int i0, double d0,
-                    LocalFit& f) {
+bool check_exterior(const Points& pts, const detail::NeighbourIndex& index,
+                    const detail::ExteriorGrid& g, LocalFit& f) {
   // measured 5, 7, 9, 11 lattice points per axis, at least 4, 8, 16 of them, shares 0.6 to 0.9
   // on the blades, the UAV, the car and the impeller (docs/benchmarks.md): 9, 8, 0.9 best
   constexpr int kExteriorLattice = 9, kExteriorLeast = 8;
@@ -328,9 +328,14 @@ bool check_exterior(const Points& pts, const detail::ExteriorGrid& g, int i0, do
           continue;
         ((q > 0) == (side < 0) ? agree : disagree)++;
       }
-  if (d0 >= f.radius && (inside == 0 || outside == 0) && disagree >= kExteriorLeast) {
-    far_plane(pts, i0, inside > 0 ? 1.0 : 0.0, f);
-    return true;
+  if ((inside == 0 || outside == 0) && disagree >= kExteriorLeast) {
+    std::vector<int> idx;
+    std::vector<double> d2;
+    index.knn(f.centre, 1, idx, d2);
+    if (d2[0] >= f.radius * f.radius) {
+      far_plane(pts, idx[0], inside > 0 ? 1.0 : 0.0, f);
+      return true;
+    }
   }
   if (disagree < kExteriorLeast || disagree < kExteriorShare * (agree + disagree))
     return false;
@@ -499,11 +504,7 @@ long negate_by_exterior(const Points& pts, const detail::NeighbourIndex& index, 
     return 0;
   std::vector<char> negated(leaves.size(), 0);
   detail::parallel_for(long(leaves.size()), detail::resolve_threads(threads), [&](long t, int) {
-    LocalFit& f = cells[leaves[size_t(t)]].fit;
-    std::vector<int> idx;
-    std::vector<double> d2;
-    index.knn(f.centre, 1, idx, d2);
-    negated[size_t(t)] = check_exterior(pts, grid, idx[0], std::sqrt(d2[0]), f);
+    negated[size_t(t)] = check_exterior(pts, index, grid, cells[leaves[size_t(t)]].fit);
   });
   return long(std::count(negated.begin(), negated.end(), 1));
 }

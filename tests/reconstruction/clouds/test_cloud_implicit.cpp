@@ -468,10 +468,9 @@ TEST_CASE("cloud implicit: leaves off the surface keep the flood fill's side ove
   // A leaf whose support ball holds no point, on a trusted flood fill that labels the ball's
   // lattice points all one side, is off the surface; its Q must have that side's sign there.
   // Before far and gap leaves were checked against the fill, their side came from the winding
-  // number or their parent's fit alone, and the thin ellipsoid (0.1 thick, clean) kept one leaf
-  // that disagreed at 8 or more lattice points (on the Rotor 37 blade at 30,000 points: a blob
-  // of F > 0 half a millimetre off the tip corner; docs/benchmarks.md, "Far leaves on the flood
-  // fill's side").
+  // number or their parent's fit alone, and the thin ellipsoid (0.1 thick, clean and noisy) kept
+  // one leaf that disagreed at 8 or more lattice points (on the Rotor 37 blade: blobs of F > 0
+  // up to 0.77 cm off the tip corner; docs/benchmarks.md, "Far leaves on the flood fill's side").
   for (const test::SampledShape shape :
        {test::SampledShape{test::Shape::sphere}, test::SampledShape{test::Shape::torus},
         test::SampledShape{test::Shape::ellipsoid, 1, 0.05},
