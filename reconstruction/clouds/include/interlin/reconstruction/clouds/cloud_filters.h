@@ -12,7 +12,7 @@ namespace interlin {
 // deviations. A flagged point is removed unless it lies on the surface of its k nearest kept
 // points (a quadratic height function over them misses it by at most 3 of their residual
 // deviations plus a tenth of their footprint; k >= 10): on a clean scan the filter flags the
-// points of the random sampling's widest gaps (29 of 20,000 on a sphere), and removing those
+// points of the random sampling's widest gaps (75 of 20,000 on a sphere), and removing those
 // opens holes. Normals, when present, follow their points.
 // Inputs: c (#P >= 2 points), k >= 1 neighbours, std_ratio > 0
 // Output: the kept points in input order; `removed` (optional) the number removed.
