@@ -4,6 +4,8 @@
 
 #include "interlin/reconstruction/meshing/parallel_for.h"
 
+#include "height_quadric.h"
+
 #include <pcl/features/normal_3d_omp.h>
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
@@ -46,36 +48,20 @@ Eigen::Vector3d centre(const Eigen::MatrixX3d& P) {
   return 0.5 * (P.colwise().minCoeff() + P.colwise().maxCoeff()).transpose();
 }
 
-// Whether point p lies on the surface of the points Q (k by 3, k > 6): in the principal frame of
-// Q (w along the normal), the quadratic height function w = h(u, v) fitted to Q by least squares
-// misses p by at most kSurfaceSigmas residual deviations of Q plus kSurfaceReach of Q's
-// footprint (its farthest point from its centroid), and (u, v) of p lies within the footprint.
-// The footprint term admits the cubic terms a quadric leaves on a clean scan (residual ~ 0);
-// a flagged outlier lies a few point spacings (a footprint of 16 points: about 2.3) off.
+// Whether point p lies on the surface of the points Q (k by 3, k > 6): the quadratic height
+// function of Q in its principal frame (height_quadric.h) misses p by at most kSurfaceSigmas
+// residual deviations of Q plus kSurfaceReach of Q's footprint (its farthest point from its
+// centroid), and p's (u, v) lies within the footprint. The footprint term admits the cubic terms
+// a quadric leaves on a clean scan (residual ~ 0); a flagged outlier lies a few point spacings
+// (a footprint of 16 points: about 2.3) off.
 bool on_quadric(const Eigen::MatrixX3d& Q, const Eigen::RowVector3d& p) {
   constexpr double kSurfaceSigmas = 3, kSurfaceReach = 0.1;
-  const Eigen::RowVector3d centroid = Q.colwise().mean();
-  const Eigen::MatrixX3d D = Q.rowwise() - centroid;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(D.transpose() * D);
-  const Eigen::MatrixX3d L = D * pca.eigenvectors(); // columns: w (normal), v, u
-  const Eigen::RowVector3d l = (p - centroid) * pca.eigenvectors();
-  const double footprint = D.rowwise().norm().maxCoeff();
-  if (!(footprint > 0) || l.tail<2>().norm() > footprint)
+  const detail::HeightQuadric h = detail::fit_height_quadric(Q);
+  const double footprint = (Q.rowwise() - h.mean).rowwise().norm().maxCoeff();
+  if (h.variance < 0 || h.local(p).tail<2>().norm() > footprint)
     return false;
-  auto row = [&](double u, double v) {
-    u /= footprint, v /= footprint; // scaled: a well-conditioned basis
-    return Eigen::Matrix<double, 1, 6>(u * u, u * v, v * v, u, v, 1);
-  };
-  Eigen::MatrixXd A(Q.rows(), 6);
-  for (Eigen::Index j = 0; j < Q.rows(); ++j)
-    A.row(j) = row(L(j, 2), L(j, 1));
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-  if (qr.rank() < 6)
-    return false;
-  const Eigen::VectorXd c = qr.solve(L.col(0));
-  const double rms = std::sqrt((A * c - L.col(0)).squaredNorm() / double(Q.rows() - 6));
-  return std::abs(row(l(2), l(1)).dot(c) - l(0)) <=
-         kSurfaceSigmas * rms + kSurfaceReach * footprint;
+  return std::abs(h.offset(p)) <=
+         kSurfaceSigmas * std::sqrt(h.variance) + kSurfaceReach * footprint;
 }
 
 // The flagged points that lie on the surface of their k nearest kept points (on_quadric). The

@@ -1,5 +1,6 @@
 #include "interlin/reconstruction/clouds/noise_level.h"
 
+#include "height_quadric.h"
 #include "nearest_neighbours.h"
 
 #include "interlin/reconstruction/meshing/parallel_for.h"
@@ -11,34 +12,6 @@
 #include <vector>
 
 namespace interlin {
-
-namespace {
-
-// Residual variance (dof-corrected) of the quadratic height function w = h(u, v) fitted to the
-// points Q (k by 3) in their principal frame; negative when the fit is degenerate.
-double quadric_residual_variance(const Eigen::MatrixX3d& Q) {
-  const Eigen::RowVector3d mean = Q.colwise().mean();
-  const Eigen::MatrixX3d X = Q.rowwise() - mean;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(X.transpose() * X);
-  const Eigen::Matrix3d E = es.eigenvectors(); // columns: normal first (smallest eigenvalue)
-  const Eigen::MatrixX3d L = X * E;
-  const double s = std::sqrt(std::max(es.eigenvalues()(2), 0.0) / double(Q.rows())); // scale
-  if (!(s > 0))
-    return -1;
-  Eigen::MatrixXd A(Q.rows(), 6);
-  for (Eigen::Index i = 0; i < Q.rows(); ++i) {
-    const double u = L(i, 2) / s, v = L(i, 1) / s;
-    A.row(i) << u * u, u * v, v * v, u, v, 1;
-  }
-  const Eigen::VectorXd w = L.col(0) / s;
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-  if (qr.rank() < 6)
-    return -1;
-  const Eigen::VectorXd r = A * qr.solve(w) - w;
-  return r.squaredNorm() * s * s / double(Q.rows() - 6);
-}
-
-} // namespace
 
 double estimate_noise(const Eigen::MatrixX3d& P, int k, int samples) {
   if (k < 10 || samples < 1)
@@ -57,7 +30,7 @@ double estimate_noise(const Eigen::MatrixX3d& P, int k, int samples) {
     Eigen::MatrixX3d Q(static_cast<Eigen::Index>(idx.size()), 3);
     for (size_t j = 0; j < idx.size(); ++j)
       Q.row(static_cast<Eigen::Index>(j)) = P.row(idx[j]);
-    var[static_cast<size_t>(s)] = quadric_residual_variance(Q);
+    var[static_cast<size_t>(s)] = detail::fit_height_quadric(Q).variance;
   });
   var.erase(std::remove_if(var.begin(), var.end(), [](double v) { return v < 0; }), var.end());
   if (var.empty())
