@@ -210,7 +210,7 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
     }
     Scratch& s = scratch[size_t(w)];
     const long slice = long(n(0)) * n(1);
-    s.mark.assign(size_t(slice * n(2)), 2);
+    s.mark.assign(size_t(slice * n(2)), f.sign_on_box ? 0 : 2);
     if (f.sign_on_box) {
       const int sign = block_sign(f, grid, lo, n);
       if (sign != 0) {

@@ -56,11 +56,13 @@ void roots_chunk(const ImplicitFunction& f, const Points3& A, const Points3& B,
       const double width = std::abs(q.to - q.ti);
       if (q.done || width <= o.tolerance || q.steps >= o.max_evaluations)
         continue;
-      // Every third step bisects unless the last three steps halved the bracket.
+      // Every fourth step bisects unless the last three halved the bracket (regula falsi may move
+      // one end twice before Illinois brings the other across); a bisection counts as its halving,
+      // so the bracket halves at least every four steps.
       bool bisect = !std::isfinite(q.wi) || !std::isfinite(q.wo);
-      if (q.steps % 3 == 2) {
+      if (q.steps % 4 == 3) {
         bisect = bisect || width > 0.5 * q.width_before;
-        q.width_before = width;
+        q.width_before = bisect ? 0.5 * width : width;
       }
       double t = 0.5 * (q.ti + q.to);
       if (!bisect) {
@@ -68,6 +70,10 @@ void roots_chunk(const ImplicitFunction& f, const Points3& A, const Points3& B,
         if (rf > std::min(q.ti, q.to) && rf < std::max(q.ti, q.to))
           t = rf;
       }
+      // At least half the tolerance from either end (Dekker's minimum step): a converged
+      // estimate then lands across the root and closes the bracket, instead of creeping to it.
+      t = std::clamp(t, std::min(q.ti, q.to) + 0.5 * o.tolerance,
+                     std::max(q.ti, q.to) - 0.5 * o.tolerance);
       active.push_back(r);
       trial.push_back(t);
       P.row(long(active.size()) - 1) = A.row(r0 + r) + t * (B.row(r0 + r) - A.row(r0 + r));

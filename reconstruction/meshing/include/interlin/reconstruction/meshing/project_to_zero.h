@@ -20,10 +20,12 @@ struct RootOptions {
 };
 
 // The point where F changes from inside (F > 0) to not inside on each segment A_i B_i.
-// Method: the seed's bisection sped up as regula falsi with the Illinois modification; every third
-// step is a plain bisection unless the bracket already shrank by half, so convergence is never
-// slower than a third of bisection's and is superlinear near a simple root. Non-finite values
-// (treated as outside, like NaN in marching_cubes) force bisection steps.
+// Method: the seed's bisection sped up as regula falsi with the Illinois modification; every fourth
+// step is a plain bisection unless the three before halved the bracket, so the bracket halves at
+// least every four steps (never slower than a quarter of bisection's), and convergence is
+// superlinear near a simple root; no trial lies within half the tolerance of an end (Dekker), so
+// a converged estimate closes the bracket at once. Non-finite values (treated as outside, like
+// NaN in marching_cubes) force bisection steps.
 // Inputs:
 //   f       implicit function (value only)
 //   A, B    #P by 3 segment ends
