@@ -185,7 +185,9 @@ void implicit_mesh(const ImplicitFunction& f, const ImplicitMeshOptions& o, Eige
   std::atomic<long long> triangles{0};
   struct Scratch {
     std::vector<double> values;
-    std::vector<signed char> mark; // per node: 2 sampled, else the sign of its block
+    // per node: 2 sampled, else the sign of its block (0 until mark_band, which covers every
+    // node, sets it; all 2 without sign_on_box)
+    std::vector<signed char> mark;
     Points3 P;
     Eigen::VectorXd batch;
   };

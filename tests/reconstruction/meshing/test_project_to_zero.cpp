@@ -46,7 +46,6 @@ TEST_CASE("roots_on_segments: sphere radius along random segments, few evaluatio
   // A flat root, (1 - |x|)^9, where regula falsi alone creeps from one side: the bisection every
   // fourth step still halves the bracket, so at most 4 x bisection's 40 steps (measured 145; 208
   // before session 23, whose rule let a bisection's own halving skip the next one).
-  evaluations = 0;
   f.value = [&](const Eigen::Ref<const Points3>& P, Eigen::Ref<Eigen::VectorXd> F) {
     evaluations += long(P.rows());
     for (Eigen::Index i = 0; i < P.rows(); ++i)
