@@ -12,9 +12,9 @@
 //                     [--cells-per-spacing K] [--depths D,D]
 //                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
 //                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--no-thin-walls]
+//                     [--no-sheet-normals] [--exact-sigmas S,S] [--span-smoothing auto|off]
 // (--resolution: interlin's grid cells along the box's longest side; auto, the default:
 // default_mesh_cell, cells of spacing / K with K = --cells-per-spacing, 2 by default.)
-//                     [--exact-sigmas S,S] [--span-smoothing auto|off]
 // (--span-smoothing off: the sectioned scans' sections each fitted to its slice alone,
 // SliceFitOptions::smooth_span, for the same-run comparison in docs/benchmarks.md.)
 // (--save: every case's cloud as DIR/KEY.xyzn and every method's mesh as DIR/KEY.METHOD.obj, for
@@ -33,9 +33,12 @@
 // (--floor: per noisy case with a truth a line "floor:" with the noisy points' own distances to the
 // truth and the point-set Chamfer of the points and of their projections onto the truth.)
 // (--no-thin-walls: every case's normals prepared with CloudPrepOptions::thin_walls off, the
-// orientation before session 9.)
+// orientation before session 9; --no-sheet-normals: with CloudPrepOptions::sheet_normals off,
+// PCA's normals as before session 24.)
 // (Cases uav-oriented, car-oriented, impeller-oriented: the model clouds with every estimated
 // normal turned to the true side, an oracle for the orientation; name them in --cases.)
+// (Cases blade-noise-free (the blade without noise, normals estimated) and body11 (the
+// R-function model data/models/body11.rf): clean clouds for the family of the sheet normals.)
 // (--exact-sigmas: one more case blade-exact-sigma-S per sigma S (cm): the blade with the true
 // normals at that noise, for a noise family; name them in --cases.)
 
@@ -506,7 +509,7 @@ struct Options {
   std::vector<int> depths{8, 9};
   std::vector<std::string> fits;         // --fit, one interlin row each
   std::vector<std::string> exact_sigmas; // --exact-sigmas: cases blade-exact-sigma-S
-  bool diagnose = false, floor = false, no_thin_walls = false;
+  bool diagnose = false, floor = false, no_thin_walls = false, no_sheet_normals = false;
 };
 
 struct UsageError : std::runtime_error {
@@ -556,8 +559,12 @@ Options parse_options(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--diagnose" || a == "--floor" || a == "--no-thin-walls") { // flags without a value
-      (a == "--floor" ? o.floor : a == "--diagnose" ? o.diagnose : o.no_thin_walls) = true;
+    if (a == "--diagnose" || a == "--floor" || a == "--no-thin-walls" ||
+        a == "--no-sheet-normals") { // flags without a value
+      (a == "--floor"              ? o.floor
+       : a == "--diagnose"         ? o.diagnose
+       : a == "--no-sheet-normals" ? o.no_sheet_normals
+                                   : o.no_thin_walls) = true;
       --i;
       continue;
     }
@@ -619,7 +626,11 @@ int main(int argc, char** argv) {
     std::cerr << "bench_clouds: " << e.what() << "\n";
     return 2;
   }
-  set_thin_walls(!o.no_thin_walls);
+  CloudPrepOptions preparation;
+  preparation.thin_walls = !o.no_thin_walls;
+  if (o.no_sheet_normals)
+    preparation.sheet_normals = SheetNormals::off;
+  set_case_preparation(preparation);
   const std::string &cases = o.cases, &methods_wanted = o.methods;
   const int points = o.points, resolution = o.resolution, threads = o.threads;
   const std::vector<int>& depths = o.depths;
@@ -637,6 +648,7 @@ int main(int argc, char** argv) {
       {"blade-noisy-oriented",
        [&] { return blade_unstructured(points, 0.02, 0, 2, Normals::oriented); }},
       {"blade-clean", [&] { return blade_unstructured(points, 0, 0, 1, Normals::exact); }},
+      {"blade-noise-free", [&] { return blade_unstructured(points, 0, 0, 1); }},
       {"blade-exact", [&] { return blade_unstructured(points, 0.005, 0, 1, Normals::exact); }},
       {"blade-noisy-exact", [&] { return blade_unstructured(points, 0.02, 0, 2, Normals::exact); }},
       {"slices", [] { return blade_slices(false, 30, 500, 0.005, 4); }},
@@ -651,6 +663,7 @@ int main(int argc, char** argv) {
       {"car", [&] { return model_cloud("car", points, 0, 9); }},
       {"valve", [&] { return model_cloud("valve", points, 0, 10); }},
       {"naca0011_plate", [&] { return model_cloud("naca0011_plate", points, 0, 11); }},
+      {"body11", [&] { return model_cloud("body11", points, 0, 14); }},
       {"valve-noisy", [&] { return model_cloud("valve", points, 0.001, 12); }}};
   for (const std::string& s : o.exact_sigmas) // the true normals: the fit alone against the noise
     all.push_back({"blade-exact-sigma-" + s, [&points, s] {

@@ -122,7 +122,7 @@ void add_noise(PointCloud& c, double sigma, unsigned seed) {
       c.points(i, a) += G(rng);
 }
 
-bool thin_walls = CloudPrepOptions{}.thin_walls; // set_thin_walls
+CloudPrepOptions preparation; // set_case_preparation
 
 // What an unstructured scan gives every method: points only; normals from prepare_cloud.
 // `inward`: how many of those normals point against the scan's true normals (prepare_cloud
@@ -132,9 +132,7 @@ PointCloud prepared(const std::string& name, const PointCloud& scan, Index& inwa
                     bool orient = false) {
   PointCloud p;
   p.points = scan.points;
-  CloudPrepOptions o;
-  o.thin_walls = thin_walls;
-  p = prepare_cloud(name, p, o);
+  p = prepare_cloud(name, p, preparation);
   inward = 0;
   for (Index i = 0, j = 0; i < p.points.rows(); ++i, ++j) {
     while (j < scan.points.rows() && scan.points.row(j) != p.points.row(i))
@@ -331,15 +329,13 @@ CloudCase bunny() {
   c.name = "bun0.pcd";
   c.description = "PCL's bunny scan, 397 points with PCL normals (re-oriented)";
   const std::string path = std::string(INTERLIN_DATA_DIR) + "/clouds/bun0.pcd";
-  CloudPrepOptions o;
-  o.thin_walls = thin_walls;
-  c.cloud = prepare_cloud(path, read_point_cloud(path), o);
+  c.cloud = prepare_cloud(path, read_point_cloud(path), preparation);
   c.normals_measured = true; // the file's (PCL's, from the full-resolution scan), re-oriented
   return c;
 }
 
-void set_thin_walls(bool on) {
-  thin_walls = on;
+void set_case_preparation(const CloudPrepOptions& o) {
+  preparation = o;
 }
 
 namespace {

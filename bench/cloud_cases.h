@@ -5,6 +5,7 @@
 // R-function models (the zero set is the truth); PCL's bunny scan (no truth).
 
 #include "interlin/reconstruction/clouds/point_cloud.h"
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
 
 #include <Eigen/Core>
 #include <cmath>
@@ -66,9 +67,9 @@ CloudCase blade_slices(bool radial, int slices, int per_slice, double sigma, uns
 CloudCase model_cloud(const std::string& name, int n, double sigma, unsigned seed,
                       bool orient = false);
 
-// Whether the cases' prepare_cloud runs with CloudPrepOptions::thin_walls (on by default, as in
-// prepare_cloud; bench_clouds --no-thin-walls turns it off).
-void set_thin_walls(bool on);
+// The options of the cases' prepare_cloud (default: prepare_cloud's; bench_clouds
+// --no-thin-walls and --no-sheet-normals change them).
+void set_case_preparation(const CloudPrepOptions& o);
 
 // data/clouds/bun0.pcd (its normals re-oriented by prepare_cloud).
 CloudCase bunny();

@@ -65,6 +65,9 @@ Point clouds:
   --voxel LEAF           voxel-grid downsampling with cubes of side LEAF (default 0: off)
   --normal-neighbours K  neighbours of the normal estimation: auto (default: 16, more where
                          the noise is large against the point spacing) or a number >= 3
+  --sheet-normals MODE   estimated normals from the neighbours on one sheet at sharp edges,
+                         narrow gaps and thin walls: auto (default: on clean scans, sampled
+                         from a model or a mesh), on, off (PCA of all K neighbours)
   --fit METHOD           unstructured fit: auto (default: for clouds of at most 500 points
                          with normals in the file, the one of pu and hrbf whose five-fold
                          hold-out is closer; else pu), pu (partition of unity of local fits,
@@ -163,10 +166,17 @@ void refuse(const ParsedArgs& a, const std::vector<const char*>& options, const 
       throw UsageError(std::string("--") + o + " " + why);
 }
 
-const std::vector<const char*> kCloudOptions = {
-    "slices",         "noise", "normals",           "outliers",
-    "outlier-ratio",  "voxel", "normal-neighbours", "max-depth",
-    "span-smoothing", "fit"};
+const std::vector<const char*> kCloudOptions = {"slices",
+                                                "noise",
+                                                "normals",
+                                                "outliers",
+                                                "outlier-ratio",
+                                                "voxel",
+                                                "normal-neighbours",
+                                                "sheet-normals",
+                                                "max-depth",
+                                                "span-smoothing",
+                                                "fit"};
 
 void sections_job(const ParsedArgs& a, const std::string& input, const std::string& output,
                   const Progress& progress) {
@@ -256,6 +266,7 @@ int run_implicit(int argc, const char* const* argv) {
                       {"outlier-ratio", 0, true, false},
                       {"voxel", 0, true, false},
                       {"normal-neighbours", 0, true, false},
+                      {"sheet-normals", 0, true, false},
                       {"max-depth", 0, true, false},
                       {"fit", 0, true, false},
                       {"span-smoothing", 0, true, false},

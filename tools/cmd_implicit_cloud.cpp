@@ -47,7 +47,17 @@ CloudPrepOptions prep_options(const ParsedArgs& a, const Progress& progress) {
               : n == "estimate" ? NormalSource::estimate
                                 : NormalSource::automatic;
   const std::string k = a.get("normal-neighbours", "auto");
-  o.normal_neighbours = k == "auto" ? 0 : parse_int("normal-neighbours", k, 3, 1000);
+  try {
+    o.normal_neighbours = k == "auto" ? 0 : parse_int("normal-neighbours", k, 3, 1000);
+  } catch (const UsageError&) {
+    throw UsageError("--normal-neighbours expects auto or an integer in [3, 1000], got '" + k +
+                     "'");
+  }
+  const std::string sheets =
+      parse_choice("sheet-normals", a.get("sheet-normals", "auto"), {"auto", "on", "off"});
+  o.sheet_normals = sheets == "on"    ? SheetNormals::on
+                    : sheets == "off" ? SheetNormals::off
+                                      : SheetNormals::automatic;
   o.threads = parse_int("threads", a.get("threads", "0"), 0, 4096);
   o.progress = progress;
   return o;
@@ -148,8 +158,13 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
     for (const std::string& n : notes)
       std::cerr << "note: " << n << "\n";
   std::cout << "  normals      "
-            << (rep.normals_estimated ? "estimated (PCL, k = " +
-                                            std::to_string(rep.normal_neighbours) + ") and oriented"
+            << (rep.normals_estimated
+                    ? "estimated (PCL, k = " + std::to_string(rep.normal_neighbours) +
+                          (rep.sheet_normals
+                               ? "; kept to one sheet, " + std::to_string(rep.sheet_changed) +
+                                     " more than 20 degrees from PCA's"
+                               : std::string()) +
+                          ") and oriented"
                 : rep.normals_reoriented ? "from the file, re-oriented"
                                          : "from the file")
             << (rep.patches_flipped > 0

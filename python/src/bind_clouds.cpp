@@ -87,6 +87,15 @@ void bind_cloud_steps(py::module_& m) {
         py::arg("threads") = 0, release_gil(),
         "PCL's normals of the points P (N, 3) from their k nearest neighbours -> (N, 3), "
         "unoriented.");
+  m.def("estimate_sheet_normals", &estimate_sheet_normals, py::arg("P"), py::arg("k") = 16,
+        py::arg("sigma") = 0.0, py::arg("threads") = 0, release_gil(),
+        "Normals of the points P (N, 3) from those of their k nearest neighbours on one sheet "
+        "(the plane proposed by a neighbour's 6-point normal with the most of them within a "
+        "quarter spacing + 3 sigma) -> (N, 3), unoriented.");
+  m.def("sign_sheet_normals", &sign_sheet_normals, py::arg("P"), py::arg("S"), py::arg("O"),
+        py::arg("sigma") = 0.0, py::arg("threads") = 0, release_gil(),
+        "Signs of sheet normals S (N, 3) from oriented PCA normals O (N, 3): a local vote of the "
+        "points where they agree, along each sheet -> (N, 3).");
   m.def(
       "orient_normals",
       [](const MatrixX3d& P, MatrixX3d N, int k) {
@@ -107,6 +116,11 @@ void bind_cloud_steps(py::module_& m) {
         py::arg("samples") = 2000, release_gil(),
         "Standard deviation of the scan noise normal to the surface (median of local quadric "
         "residuals).");
+  m.def("median_point_spacing", &median_point_spacing, py::arg("P"), py::arg("k") = 16,
+        py::arg("samples") = 2000, release_gil(),
+        "Median over up to `samples` points of d sqrt(pi / k), d the k-th neighbour's distance.");
+  m.def("is_clean_scan", &is_clean_scan, py::arg("P"), release_gil(),
+        "Whether the scan noise is below 0.002 point spacings (sampled from a model or a mesh).");
   m.def("normal_neighbours_for_noise", &normal_neighbours_for_noise, py::arg("P"), py::arg("sigma"),
         py::arg("k_min") = 16, py::arg("k_max") = 64, py::arg("samples") = 2000, release_gil(),
         "Neighbours for PCA normals at noise sigma: 2 sqrt(pi) sigma / (spacing 0.1 rad), "
@@ -115,7 +129,7 @@ void bind_cloud_steps(py::module_& m) {
       "prepare_cloud",
       [](const PointCloud& cloud, const std::string& path, int outlier_neighbours,
          double outlier_ratio, double voxel, const std::string& normals, int normal_neighbours,
-         int orient_neighbours, int threads) {
+         const std::string& sheet_normals, int orient_neighbours, int threads) {
         CloudPrepOptions o;
         o.outlier_neighbours = outlier_neighbours, o.outlier_ratio = outlier_ratio;
         o.voxel = voxel;
@@ -124,6 +138,7 @@ void bind_cloud_steps(py::module_& m) {
                                           {"estimate", NormalSource::estimate}},
                                          normals, "normals");
         o.normal_neighbours = normal_neighbours, o.orient_neighbours = orient_neighbours;
+        o.sheet_normals = sheet_normals_choice(sheet_normals);
         o.threads = threads;
         CloudPrepReport report;
         std::vector<std::string> notes;
@@ -136,12 +151,14 @@ void bind_cloud_steps(py::module_& m) {
       },
       py::arg("cloud"), py::arg("path") = "<cloud>", py::arg("outlier_neighbours") = 16,
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
-      py::arg("normal_neighbours") = 0, py::arg("orient_neighbours") = 10, py::arg("threads") = 0,
+      py::arg("normal_neighbours") = 0, py::arg("sheet_normals") = "auto",
+      py::arg("orient_neighbours") = 10, py::arg("threads") = 0,
       R"(The preparation steps in order: repeated points and degenerate clouds, statistical
 outlier removal (outlier_neighbours 0: off), voxel downsampling (voxel 0: off), normals ("auto":
 the file's when consistent, re-oriented or estimated; "file"; "estimate"; normal_neighbours 0:
-k from the noise, normal_neighbours_for_noise) and their orientation -> (PointCloud, report
-dict, notes).)");
+k from the noise, normal_neighbours_for_noise; sheet_normals "auto": estimated normals keep to
+one sheet on clean scans, "on", "off") and their orientation -> (PointCloud, report dict,
+notes).)");
 }
 
 void bind_cloud_fit(py::module_& m) {
@@ -193,6 +210,12 @@ py::dict cloud_fit_dict(const CloudFitInfo& i) {
       field("acceptance", &CloudFitInfo::acceptance));
 }
 
+SheetNormals sheet_normals_choice(const std::string& s) {
+  return choice<SheetNormals>(
+      {{"auto", SheetNormals::automatic}, {"on", SheetNormals::on}, {"off", SheetNormals::off}}, s,
+      "sheet_normals");
+}
+
 py::dict cloud_report_dict(const CloudPrepReport& r) {
   return fields_dict(
       r, field("read", &CloudPrepReport::read), field("distinct", &CloudPrepReport::distinct),
@@ -202,7 +225,9 @@ py::dict cloud_report_dict(const CloudPrepReport& r) {
       field("normal_neighbours", &CloudPrepReport::normal_neighbours),
       field("disagreement", &CloudPrepReport::disagreement),
       field("components", &CloudPrepReport::components),
-      field("patches_flipped", &CloudPrepReport::patches_flipped));
+      field("patches_flipped", &CloudPrepReport::patches_flipped),
+      field("sheet_normals", &CloudPrepReport::sheet_normals),
+      field("sheet_changed", &CloudPrepReport::sheet_changed));
 }
 
 void bind_clouds(py::module_& m) {

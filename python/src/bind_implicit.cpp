@@ -272,8 +272,8 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
          const py::object& span_degree, const std::string& align, const std::string& match,
          const py::object& param, const std::string& span, const std::string& slices, double noise,
          int max_depth, int outliers, double outlier_ratio, double voxel,
-         const std::string& normals, int normal_neighbours, const std::string& span_smoothing,
-         const std::string& fit) {
+         const std::string& normals, int normal_neighbours, const std::string& sheet_normals,
+         const std::string& span_smoothing, const std::string& fit) {
         if (resolution < 8 || resolution > 1024)
           throw py::value_error("resolution: expected 8 .. 1024 grid cells");
         if (!(band.first > 0 && band.second > band.first))
@@ -319,6 +319,7 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
                                                {"estimate", NormalSource::estimate}},
                                               normals, "normals");
         a.prep.normal_neighbours = normal_neighbours;
+        a.prep.sheet_normals = sheet_normals_choice(sheet_normals);
         a.prep.threads = a.fit.threads = threads;
         a.prep.progress = a.fit.progress = o.progress;
         a.fit.noise = noise;
@@ -337,7 +338,8 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
       py::arg("param") = "chord", py::arg("span") = "auto", py::arg("slices") = "auto",
       py::arg("noise") = 0.0, py::arg("max_depth") = 12, py::arg("outliers") = 16,
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
-      py::arg("normal_neighbours") = 0, py::arg("span_smoothing") = "auto", py::arg("fit") = "auto",
+      py::arg("normal_neighbours") = 0, py::arg("sheet_normals") = "auto",
+      py::arg("span_smoothing") = "auto", py::arg("fit") = "auto",
       R"(The implicit equation of a body, as `interlin implicit` -> ImplicitModel.
 input            sections (a section file, a SectionSet, or a list of Section / (P, 3) arrays):
                  the body of the loft through every section, closed by ruled end caps; a point
@@ -365,9 +367,9 @@ fit              unstructured clouds: "auto" (at most 500 points with the file's
 span_smoothing   sectioned scans: "auto" (the sections become isocurves of one least-squares
                  surface through all slices when Mallows' C_p prefers it; report span_control:
                  its control points along the span, 0 when not) or "off"
-outliers, outlier_ratio, voxel, normals, normal_neighbours   the preparation steps (as
-                 prepare_cloud; outliers 0: off, voxel 0: off, normal_neighbours 0: from the
-                 noise).)");
+outliers, outlier_ratio, voxel, normals, normal_neighbours, sheet_normals   the preparation
+                 steps (as prepare_cloud; outliers 0: off, voxel 0: off, normal_neighbours 0:
+                 from the noise; sheet_normals "auto": on clean scans, "on", "off").)");
   m.def("ifl_kinds", &ifl_kinds, "The model kinds .ifl files may hold (load_model reads them).");
 }
 

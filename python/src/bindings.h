@@ -115,6 +115,8 @@ py::dict fields_dict(const S& s, const std::pair<const char*, T S::*>&... fields
 // What prepare_cloud reports and what fit_cloud_implicit measured, as dicts (bind_clouds.cpp).
 py::dict cloud_report_dict(const CloudPrepReport& r);
 py::dict cloud_fit_dict(const CloudFitInfo& i);
+// "auto" | "on" | "off" (bind_clouds.cpp).
+SheetNormals sheet_normals_choice(const std::string& s);
 
 // The path of a str or os.PathLike, else nullopt (bind_loft.cpp).
 std::optional<std::string> path_of(const py::handle& o);

@@ -35,6 +35,32 @@ def test_orientation_and_noise_on_spheres():
         assert est < 1e-3 if sigma == 0 else abs(est / sigma - 1) < 0.3
 
 
+def test_sheet_normals_across_a_narrow_gap():
+    # two unit squares 1.5 spacings apart (a slab seen from outside): PCA of 16 neighbours
+    # straddles the gap, the sheet normals keep to one square (test_sheet_normals.cpp)
+    rng = np.random.default_rng(5)
+    n = 4000
+    P = np.column_stack([rng.random((2 * n, 2)), np.repeat([0.0, 1.5 / np.sqrt(n)], n)])
+    true = np.repeat([[0, 0, -1.0], [0, 0, 1.0]], n, axis=0)
+    # one square is clean; two within every neighbourhood read as noise (the quadrics straddle
+    # the gap), so prepare_cloud's automatic choice keeps PCA there, and "on" takes sheets 3
+    # such sigmas thick: PCA's normals again (prepare_cloud on a clean cube: test_sheet_normals)
+    assert interlin.is_clean_scan(P[:n]) and not interlin.is_clean_scan(P)
+    assert abs(interlin.median_point_spacing(P[:n]) * np.sqrt(n) - 1) < 0.1  # Poisson: 1 / sqrt(n)
+    off = lambda N: np.mean(np.abs(np.sum(N * true, axis=1)) < np.cos(np.radians(20)))
+    N = interlin.estimate_normals(P, 16, threads=1)
+    S = interlin.estimate_sheet_normals(P, 16, 0.0, threads=1)
+    assert off(N) > 0.3 and off(S) < 0.02
+    signed = interlin.sign_sheet_normals(P, S, true, 0.0, threads=1)
+    assert np.all(np.sum(signed * true, axis=1) > 0)
+    _, report, _ = interlin.prepare_cloud(interlin.PointCloud(P), sheet_normals="on", threads=1)
+    assert report["sheet_normals"]
+    _, report, _ = interlin.prepare_cloud(interlin.PointCloud(P), threads=1)
+    assert not report["sheet_normals"] and report["sheet_changed"] == 0
+    with pytest.raises(ValueError):
+        interlin.prepare_cloud(interlin.PointCloud(P), sheet_normals="maybe")
+
+
 def test_fit_a_noisy_sphere_and_mesh_it():
     rng = np.random.default_rng(4)
     P, N = sphere_cloud(3000, 0.002, rng)

@@ -114,6 +114,28 @@ TEST_CASE("CLI implicit: unstructured clouds -> .ifl through the points, signed,
   }
 }
 
+TEST_CASE("CLI implicit: sheet normals on clean clouds by default, --sheet-normals off|on",
+          "[cli][implicit][clouds]") {
+  TempDir d("implicitsheets");
+  write_cloud(d / "clean.xyz", sample_shape({Shape::sphere}, 2000, 0, 45));
+  write_cloud(d / "noisy.xyz", sample_shape({Shape::sphere}, 2000, 0.01, 45));
+  const std::string o = " -o " + d / "x.ifl -q";
+  const std::string kept = "; kept to one sheet, ";
+  Run r = run("implicit " + d / "clean.xyz" + o);
+  REQUIRE(r.status == 0);
+  // a sphere is one smooth sheet everywhere: its sheet normals are PCA's
+  CHECK_THAT(r.out, Catch::Contains(kept + "0 more than 20 degrees from PCA's) and oriented"));
+  r = run("implicit " + d / "clean.xyz" + o + " --sheet-normals off");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, !Catch::Contains(kept) && Catch::Contains("k = 16) and oriented"));
+  r = run("implicit " + d / "noisy.xyz" + o);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, !Catch::Contains(kept));
+  r = run("implicit " + d / "noisy.xyz" + o + " --sheet-normals on");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains(kept));
+}
+
 TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by default; points "
           "per fit",
           "[cli][implicit][clouds]") {
@@ -324,5 +346,8 @@ TEST_CASE("CLI implicit: bad clouds and options give one line, exit 1 or 2, no o
                "--set applies to R-function models");
   expect_error(run("implicit " + d / "ok.xyz" + o + " --normals file"), 1,
                "the file has no normals");
+  expect_error(run("implicit " + d / "ok.xyz" + o + " --sheet-normals yes"), 2, "--sheet-normals");
+  expect_error(run("implicit " + d / "ok.xyz" + o + " --normal-neighbours 2"), 2,
+               "--normal-neighbours expects auto or an integer in [3, 1000], got '2'");
   CHECK(files_in(d) == 4); // the inputs only
 }

@@ -5,7 +5,10 @@
 #include "interlin/reconstruction/meshing/parallel_for.h"
 
 #include "height_quadric.h"
+#include "nearest_neighbours.h"
+#include "sheet_plane.h"
 
+#include <pcl/features/normal_3d.h>
 #include <pcl/features/normal_3d_omp.h>
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/filters/voxel_grid.h>
@@ -17,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -186,6 +190,64 @@ Eigen::MatrixX3d estimate_normals(const Eigen::MatrixX3d& P, int k, int threads)
     N.row(i) = std::isfinite(v.squaredNorm()) && v.norm() > 0 ? v.normalized().transpose()
                                                               : Eigen::RowVector3d(0, 0, 1);
   }
+  return N;
+}
+
+namespace {
+
+// The neighbours of point i (itself first, then K's row) on the plane proposed by one of them
+// with the most of them on it.
+pcl::Indices sheet_neighbours(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& proposed,
+                              const Eigen::MatrixXi& K, Eigen::Index i, double sigma) {
+  pcl::Indices near{int(i)};
+  for (Eigen::Index j = 0; j < K.cols(); ++j)
+    near.push_back(K(i, j));
+  const double tol =
+      detail::sheet_tolerance((P.row(near[detail::kSheetProposal - 1]) - P.row(i)).norm(), sigma);
+  auto on_plane = [&](int j, int through) {
+    return std::abs((P.row(j) - P.row(i)).dot(proposed.row(through))) <= tol;
+  };
+  int best = int(i), most = 0;
+  for (int q : near) {
+    const int count =
+        int(std::count_if(near.begin(), near.end(), [&](int j) { return on_plane(j, q); }));
+    if (count > most)
+      most = count, best = q;
+  }
+  pcl::Indices sheet;
+  std::copy_if(near.begin(), near.end(), std::back_inserter(sheet),
+               [&](int j) { return on_plane(j, best); });
+  return sheet;
+}
+
+} // namespace
+
+Eigen::MatrixX3d estimate_sheet_normals(const Eigen::MatrixX3d& P, int k, double sigma,
+                                        int threads) {
+  if (!(sigma >= 0))
+    throw std::invalid_argument("sheet normals: the noise sigma must be >= 0");
+  if (k < detail::kSheetProposal)
+    throw std::invalid_argument("sheet normals: need at least " +
+                                std::to_string(detail::kSheetProposal) + " neighbours");
+  if (P.rows() <= k)
+    throw std::invalid_argument("sheet normals: need more than " + std::to_string(k) +
+                                " points, got " + std::to_string(P.rows()));
+  const Eigen::MatrixX3d proposed = estimate_normals(P, detail::kSheetProposal, threads);
+  const Eigen::MatrixXi K = detail::NeighbourIndex(P).knn_all(k - 1, threads); // itself excluded
+  PointCloud c;
+  c.points = P;
+  const auto cloud = to_pcl(c, centre(P));
+  Eigen::MatrixX3d N(P.rows(), 3);
+  detail::parallel_for(long(P.rows()), detail::resolve_threads(threads), [&](long i, int) {
+    const pcl::Indices sheet = sheet_neighbours(P, proposed, K, i, sigma);
+    Eigen::Vector4f plane;
+    float curvature;
+    const bool fitted = int(sheet.size()) >= detail::kSheetProposal &&
+                        pcl::computePointNormal(*cloud, sheet, plane, curvature) &&
+                        plane.head<3>().allFinite() && plane.head<3>().norm() > 0;
+    N.row(i) = fitted ? Eigen::RowVector3d(plane.head<3>().cast<double>().normalized())
+                      : Eigen::RowVector3d(proposed.row(i));
+  });
   return N;
 }
 

@@ -359,19 +359,20 @@ constexpr double kCramerRaoPoints = 460;
 // they accept the misfit of wrong normals at thin edges (docs/benchmarks.md, session 9).
 constexpr double kAcceptanceCap = 2;
 
-// min_points 0 (automatic): kCleanPoints per fit on a clean cloud (rho below kCleanRho: sampled
-// from a model or a mesh), whose leaves stop only at min_points (no fit is rejected as noise):
-// smaller patches follow curvature and sharp edges (docs/benchmarks.md, session 12: tori,
-// ellipsoids, cylinders -12 to -34 %, the bench's models up to -50 %); kNoisyPoints otherwise,
-// where 10 points let the noise through (a torus at rho 0.005 +21 %, holes in 0.02-thick noisy
-// walls).
+// min_points 0 (automatic): kCleanPoints per fit on a clean cloud (rho below kCleanScanNoise:
+// sampled from a model or a mesh; noise_level.h), whose leaves stop only at min_points (no fit is
+// rejected as noise): smaller patches follow curvature and sharp edges (docs/benchmarks.md, session
+// 12: tori, ellipsoids, cylinders -12 to -34 %, the bench's models up to -50 %); kNoisyPoints
+// otherwise, where 10 points let the noise through (a torus at rho 0.005 +21 %, holes in 0.02-thick
+// noisy walls).
 constexpr int kCleanPoints = 10, kNoisyPoints = 20;
-constexpr double kCleanRho = 0.002;
 
 Rule fit_rule(const CloudFitOptions& o, double sigma, double rho, Eigen::Index points) {
   Rule r;
   r.sigma = sigma;
-  r.min_points = o.min_points > 0 ? o.min_points : rho < kCleanRho ? kCleanPoints : kNoisyPoints;
+  r.min_points = o.min_points > 0        ? o.min_points
+                 : rho < kCleanScanNoise ? kCleanPoints
+                                         : kNoisyPoints;
   if (o.noise_aware) {
     const double k = std::ceil(kCramerRaoPoints * rho * rho);
     r.min_points = static_cast<int>(std::min<double>(std::max<double>(r.min_points, k), points));

@@ -46,6 +46,28 @@ double estimate_scan_noise(const Eigen::MatrixX3d& P, int samples) {
   return std::sqrt(std::max(0.0, (8 * s1 * s1 - s2 * s2) / 7));
 }
 
+double median_point_spacing(const Eigen::MatrixX3d& P, int k, int samples) {
+  if (k < 1 || samples < 1)
+    throw std::invalid_argument("point spacing: need k >= 1 and samples >= 1");
+  if (P.rows() <= k)
+    throw std::invalid_argument("point spacing: need more than k points");
+  const detail::NeighbourIndex index(P);
+  const Eigen::Index n = P.rows(), m = std::min<Eigen::Index>(n, samples);
+  std::vector<double> spacing(static_cast<size_t>(m));
+  detail::parallel_for(static_cast<long>(m), detail::resolve_threads(0), [&](long s, int) {
+    std::vector<int> idx;
+    std::vector<double> d2;
+    index.knn(P.row(s * n / m).transpose(), k + 1, idx, d2); // itself first
+    spacing[static_cast<size_t>(s)] = std::sqrt(d2.back() * M_PI / k);
+  });
+  std::nth_element(spacing.begin(), spacing.begin() + m / 2, spacing.end());
+  return spacing[static_cast<size_t>(m / 2)];
+}
+
+bool is_clean_scan(const Eigen::MatrixX3d& P) {
+  return estimate_scan_noise(P) < kCleanScanNoise * median_point_spacing(P);
+}
+
 int normal_neighbours_for_noise(const Eigen::MatrixX3d& P, double sigma, int k_min, int k_max,
                                 int samples) {
   constexpr double kNormalTilt = 0.1; // rad, about 5.7 degrees
@@ -55,17 +77,7 @@ int normal_neighbours_for_noise(const Eigen::MatrixX3d& P, double sigma, int k_m
     throw std::invalid_argument("normal neighbours: need more than k_min points");
   if (sigma == 0)
     return k_min;
-  const detail::NeighbourIndex index(P);
-  const Eigen::Index n = P.rows(), m = std::min<Eigen::Index>(n, samples);
-  std::vector<double> spacing(static_cast<size_t>(m));
-  detail::parallel_for(static_cast<long>(m), detail::resolve_threads(0), [&](long s, int) {
-    std::vector<int> idx;
-    std::vector<double> d2;
-    index.knn(P.row(s * n / m).transpose(), k_min + 1, idx, d2); // itself first
-    spacing[static_cast<size_t>(s)] = std::sqrt(d2.back() * M_PI / k_min);
-  });
-  std::nth_element(spacing.begin(), spacing.begin() + m / 2, spacing.end());
-  const double s = spacing[static_cast<size_t>(m / 2)];
+  const double s = median_point_spacing(P, k_min, samples);
   if (!(s > 0))
     return k_min;
   const double k = 2 * std::sqrt(M_PI) * sigma / (s * kNormalTilt);

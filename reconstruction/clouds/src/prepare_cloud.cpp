@@ -7,6 +7,7 @@
 #include "interlin/reconstruction/io/input_error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace interlin {
@@ -36,15 +37,29 @@ void say(const CloudPrepOptions& o, const std::string& s) {
 // The k of the normals: options.normal_neighbours, or from the noise when it is 0 (at least
 // kNormalNeighbours, which small clouds keep: estimate_noise needs more than 24 points; at most
 // kMostNormalNeighbours, wider neighbourhoods round off the edges they straddle).
-int normal_neighbours(const Eigen::MatrixX3d& P, int asked) {
+int normal_neighbours(const Eigen::MatrixX3d& P, int asked, double sigma) {
   constexpr int kNormalNeighbours = 16, kMostNormalNeighbours = 64;
   if (asked > 0)
     return asked;
   if (P.rows() <= 24)
     return kNormalNeighbours;
   const int most = int(std::min<Eigen::Index>(kMostNormalNeighbours, P.rows() - 1));
-  return normal_neighbours_for_noise(P, estimate_noise(P), kNormalNeighbours,
+  return normal_neighbours_for_noise(P, sigma, kNormalNeighbours,
                                      std::max(most, kNormalNeighbours));
+}
+
+// Whether the normals of k neighbours are sheet normals (estimate_noise and is_clean_scan need
+// more than 24 points).
+bool use_sheet_normals(const Eigen::MatrixX3d& P, SheetNormals asked, int k) {
+  if (asked == SheetNormals::off || P.rows() <= std::max(24, k) || k < 6)
+    return false;
+  return asked == SheetNormals::on || is_clean_scan(P);
+}
+
+// The number of rows of A and B more than 20 degrees apart (either sign).
+Eigen::Index count_apart(const Eigen::MatrixX3d& A, const Eigen::MatrixX3d& B) {
+  const double kApart = std::cos(20 * M_PI / 180);
+  return ((A.array() * B.array()).rowwise().sum().abs() < kApart).count();
 }
 
 } // namespace
@@ -74,10 +89,17 @@ void cloud_normals(const std::string& path, PointCloud& c, const CloudPrepOption
   if (o.normals == NormalSource::file && !c.has_normals())
     throw_input_error(path, 0,
                       "the file has no normals (fields nx, ny, nz); estimate them instead");
+  Eigen::MatrixX3d sheet; // sheet normals, signed after PCA's are oriented
+  double sigma = 0;
   if (o.normals == NormalSource::estimate || !c.has_normals()) {
-    const int k = normal_neighbours(c.points, o.normal_neighbours);
-    say(o, "normal estimation (k = " + std::to_string(k) + ")");
+    sigma = c.points.rows() > 24 ? estimate_noise(c.points) : 0;
+    const int k = normal_neighbours(c.points, o.normal_neighbours, sigma);
+    r.sheet_normals = use_sheet_normals(c.points, o.sheet_normals, k);
+    say(o, std::string(r.sheet_normals ? "sheet " : "") +
+               "normal estimation (k = " + std::to_string(k) + ")");
     c.normals = estimate_normals(c.points, k, o.threads);
+    if (r.sheet_normals)
+      sheet = estimate_sheet_normals(c.points, k, sigma, o.threads);
     r.normals_estimated = true;
     r.normal_neighbours = k;
   } else if (o.normals == NormalSource::automatic) {
@@ -96,6 +118,11 @@ void cloud_normals(const std::string& path, PointCloud& c, const CloudPrepOption
     say(o, "orientation check by the winding number");
     r.patches_flipped =
         orient_by_winding_number(c.points, c.normals, o.orient_neighbours, o.thin_walls);
+  }
+  if (r.sheet_normals) {
+    say(o, "sheet normal signs");
+    r.sheet_changed = count_apart(sheet, c.normals);
+    c.normals = sign_sheet_normals(c.points, sheet, c.normals, sigma, o.threads);
   }
 }
 

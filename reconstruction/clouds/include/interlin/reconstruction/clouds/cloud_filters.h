@@ -34,4 +34,20 @@ PointCloud voxel_downsample(const PointCloud& c, double leaf);
 // Output: #P by 3 unit normals.
 Eigen::MatrixX3d estimate_normals(const Eigen::MatrixX3d& P, int k, int threads = 0);
 
+// Normals whose neighbourhoods keep to one sheet. Near a sharp edge, across a narrow gap or
+// beside a thin wall the k nearest neighbours straddle two sheets, and their PCA normal blends
+// both (more than 20 degrees off at 6 to 20 % of the points of the bench's CAD models, k = 16).
+// Each of the k nearest points q (the point i itself included) proposes the plane through p_i
+// normal to q's PCA normal of 6 neighbours (estimate_normals); the plane with the most of the k
+// within sheet_tolerance of it (a quarter of the local spacing + 3 sigma) selects them, and PCL's
+// PCA of the selection (pcl::computePointNormal) is the normal; with fewer than 6 selected, the
+// 6-neighbour normal. On a smooth sheet every neighbour is selected and the normal is
+// estimate_normals's. Signs: sign_sheet_normals. docs/benchmarks.md "Normals that keep to one
+// sheet".
+// Inputs: P #P by 3 (#P > k), k >= 6, sigma >= 0 the noise (estimate_noise), threads (0: all)
+// Output: #P by 3 unit normals, unoriented. Throws std::invalid_argument for bad inputs.
+// See also: estimate_normals, sign_sheet_normals (orient_normals.h)
+Eigen::MatrixX3d estimate_sheet_normals(const Eigen::MatrixX3d& P, int k, double sigma,
+                                        int threads = 0);
+
 } // namespace interlin

@@ -23,12 +23,27 @@ double estimate_noise(const Eigen::MatrixX3d& P, int k = 24, int samples = 2000)
 // Inputs: P #P by 3 (#P > 24), samples >= 1
 double estimate_scan_noise(const Eigen::MatrixX3d& P, int samples = 2000);
 
+// Scan noise (estimate_scan_noise) below this many point spacings: a clean cloud, sampled from a
+// model or a mesh (the bench's CAD models read 0, simulated and real scans 0.17 to 0.5).
+constexpr double kCleanScanNoise = 0.002;
+
+// The median point spacing: over up to `samples` points spread over the cloud, d sqrt(pi / k),
+// d the distance to the k-th nearest neighbour (the radius of a disc of k points of spacing s is
+// s sqrt(k / pi)).
+// Inputs: P #P by 3 (#P > k), k >= 1, samples >= 1
+// Output: s >= 0. Throws std::invalid_argument for bad inputs.
+double median_point_spacing(const Eigen::MatrixX3d& P, int k = 16, int samples = 2000);
+
+// Whether the cloud is clean: estimate_scan_noise below kCleanScanNoise median_point_spacing.
+// Inputs: P #P by 3 (#P > 24)
+bool is_clean_scan(const Eigen::MatrixX3d& P);
+
 // The number of nearest neighbours for PCA normals (estimate_normals) at noise sigma. For k
 // points of spacing s in a disc of radius r = s sqrt(k / pi) with height noise sigma, the fitted
 // plane's slope has standard error sigma / sqrt(sum x^2) = 2 sigma / (r sqrt(k)) =
 // 2 sqrt(pi) sigma / (s k); k is chosen so that this is kNormalTilt = 0.1 rad:
-// k = 2 sqrt(pi) sigma / (0.1 s), clamped to [k_min, k_max]. s is the median over up to
-// `samples` points of d sqrt(pi / k_min), d the distance to the k_min-th neighbour. A fixed k
+// k = 2 sqrt(pi) sigma / (0.1 s), clamped to [k_min, k_max]. s is median_point_spacing(P, k_min,
+// samples). A fixed k
 // lets the neighbourhood shrink below the noise on dense scans: the noisy blade (sigma 0.02 cm)
 // at 300,000 points had no normal within 30 degrees of its neighbours' and 8.9 % of them inward
 // at k = 16 (docs/benchmarks.md, "Normals at the noise's scale"). 0.1 rad was chosen on that

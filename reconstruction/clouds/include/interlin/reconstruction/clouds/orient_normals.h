@@ -63,6 +63,24 @@ void orient_normals(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
 Eigen::Index orient_by_winding_number(const Eigen::MatrixX3d& P, Eigen::MatrixX3d& N, int k,
                                       bool thin_walls = true);
 
+// Signs for sheet normals S (estimate_sheet_normals) from oriented PCA normals O of the same
+// points. Where S and O agree within 20 degrees (reliable: one sheet, where the PCA normal is
+// right and oriented), O's sign is right; where they do not (edges, gaps, thin walls), O's sign
+// may belong to the other sheet. The sheet graph joins mutual 16-nearest neighbours that lie on
+// each other's sheet plane (detail::sheet_tolerance) with normals within 15 degrees; each of its
+// connected parts is made consistent by breadth-first propagation. Each point then takes the
+// sign of the reliable points' votes (+1 where the propagated normal agrees with O, -1 where not)
+// averaged over itself and its graph neighbours 30 times (the votes within about 30 hops along
+// its sheet, nearest weighted most): a local vote, as a part's edges can leak onto another sheet
+// and one vote per part then turns whole regions (the noisy blade's edges). Points without a
+// vote keep O's sign. docs/benchmarks.md "Normals that keep to one sheet".
+// Inputs: P #P by 3, S #P by 3 unit normals (any signs), O #P by 3 unit normals oriented outward
+//         (orient_normals, orient_by_winding_number), sigma >= 0 the noise, threads (0: all)
+// Output: S with signs, #P by 3.
+// See also: estimate_sheet_normals (cloud_filters.h)
+Eigen::MatrixX3d sign_sheet_normals(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& S,
+                                    const Eigen::MatrixX3d& O, double sigma, int threads = 0);
+
 // The fraction of k-nearest-neighbour pairs lying on one sheet (edge within 30 degrees of both
 // tangent planes) whose normals point to opposite sides (n_i . n_j < 0): about 0 for
 // consistently oriented normals, near 0.5 for random signs.

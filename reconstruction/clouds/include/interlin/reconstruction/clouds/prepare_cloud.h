@@ -17,13 +17,23 @@ enum class NormalSource {
   estimate   // always estimated (PCL) and oriented (orient_normals)
 };
 
+// Which estimated normals keep their neighbourhoods to one sheet (estimate_sheet_normals,
+// sign_sheet_normals) instead of PCL's PCA of all k neighbours.
+enum class SheetNormals {
+  automatic, // on clean scans (is_clean_scan: sampled from a model or a mesh), where edges and
+             // narrow gaps are sharp; noisy scans keep PCA's normals (docs/benchmarks.md)
+  on,
+  off
+};
+
 struct CloudPrepOptions {
   int outlier_neighbours = 16; // statistical outlier removal: k (0 switches it off) ...
   double outlier_ratio = 3.0;  // ... and the standard-deviation multiple
   double voxel = 0;            // voxel-grid downsampling leaf size (0: off)
   NormalSource normals = NormalSource::automatic;
-  int normal_neighbours = 0;  // PCL normal estimation: k nearest neighbours (0: from the noise,
-                              // normal_neighbours_for_noise, at least 16)
+  int normal_neighbours = 0; // PCL normal estimation: k nearest neighbours (0: from the noise,
+                             // normal_neighbours_for_noise, at least 16)
+  SheetNormals sheet_normals = SheetNormals::automatic;
   int orient_neighbours = 10; // orientation graph: k nearest neighbours
   bool thin_walls = true;     // orient_by_winding_number: thin walls and edges (false: as before)
   int threads = 0;
@@ -37,6 +47,8 @@ struct CloudPrepReport {
   double disagreement = 0;          // orientation_disagreement of the file's normals (automatic)
   Eigen::Index components = 0;      // parts of the orientation graph
   Eigen::Index patches_flipped = 0; // normals negated by orient_by_winding_number
+  bool sheet_normals = false;       // the estimated normals are sheet normals
+  Eigen::Index sheet_changed = 0;   // ... more than 20 degrees from PCA's at this many points
 };
 
 // Inputs: path (named in messages), the cloud as read, options.
