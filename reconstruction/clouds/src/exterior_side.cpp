@@ -1,6 +1,8 @@
 // The outside of a closed scan by a voxel flood fill (exterior_side.h).
 #include "exterior_side.h"
 
+#include "interlin/reconstruction/meshing/parallel_for.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -63,21 +65,16 @@ void mark_shell(Grid& g, const Eigen::MatrixX3d& P) {
   }
 }
 
-// The free voxels reached from the grid's border through face neighbours become kOutside.
-void flood_outside(Grid& g) {
-  std::vector<long> queue;
+// From the voxels in the queue (already set to `to`), every voxel of state `from` reached through
+// face neighbours is set to `to` and appended to the queue.
+void flood(Grid& g, std::vector<long>& queue, std::uint8_t from, std::uint8_t to) {
   auto visit = [&](long x, long y, long z) {
     std::uint8_t& s = g.state[size_t(index(g, x, y, z))];
-    if (s == kInside) {
-      s = kOutside;
+    if (s == from) {
+      s = to;
       queue.push_back(index(g, x, y, z));
     }
   };
-  for (long z = 0; z < g.n[2]; ++z)
-    for (long y = 0; y < g.n[1]; ++y)
-      for (long x = 0; x < g.n[0]; ++x)
-        if (x == 0 || y == 0 || z == 0 || x == g.n[0] - 1 || y == g.n[1] - 1 || z == g.n[2] - 1)
-          visit(x, y, z);
   for (size_t head = 0; head < queue.size(); ++head) {
     const auto [x, y, z] = coords(g, queue[head]);
     if (x > 0)
@@ -93,6 +90,25 @@ void flood_outside(Grid& g) {
     if (z + 1 < g.n[2])
       visit(x, y, z + 1);
   }
+}
+
+// The free voxels reached from the grid's border through face neighbours become kOutside.
+void flood_outside(Grid& g) {
+  std::vector<long> queue;
+  for (long z = 0; z < g.n[2]; ++z)
+    for (long y = 0; y < g.n[1]; ++y)
+      for (long x = 0; x < g.n[0]; ++x)
+        if ((x == 0 || y == 0 || z == 0 || x == g.n[0] - 1 || y == g.n[1] - 1 || z == g.n[2] - 1) &&
+            g.state[size_t(index(g, x, y, z))] == kInside) {
+          g.state[size_t(index(g, x, y, z))] = kOutside;
+          queue.push_back(index(g, x, y, z));
+        }
+  flood(g, queue, kInside, kOutside);
+}
+
+Eigen::Vector3d centre(const Grid& g, long v) {
+  const auto [x, y, z] = coords(g, v);
+  return (g.lo + g.h * (Eigen::Array3d(double(x), double(y), double(z)) + 0.5)).matrix();
 }
 
 // The state of the first non-shell voxel from p along d (kShell when none within kMarchVoxels).
@@ -125,6 +141,34 @@ int exterior_side(const ExteriorGrid& g, const Eigen::Vector3d& x) {
   return s == kOutside ? 1 : s == kInside ? -1 : 0;
 }
 
+long open_pockets(ExteriorGrid& g, const std::function<double(const Eigen::Vector3d&)>& winding,
+                  int threads) {
+  constexpr std::uint8_t kKept = 3; // an inside component read as inside, until the end
+  constexpr size_t kSamples = 64;
+  long opened = 0;
+  std::vector<long> part;
+  std::vector<double> w;
+  for (long v = 0; v < long(g.state.size()); ++v) {
+    if (g.state[size_t(v)] != kInside)
+      continue;
+    g.state[size_t(v)] = kKept;
+    part.assign(1, v);
+    flood(g, part, kInside, kKept);
+    const size_t step = std::max<size_t>(1, part.size() / kSamples);
+    w.assign((part.size() + step - 1) / step, 0);
+    parallel_for(long(w.size()), resolve_threads(threads),
+                 [&](long t, int) { w[size_t(t)] = winding(centre(g, part[size_t(t) * step])); });
+    std::nth_element(w.begin(), w.begin() + std::ptrdiff_t(w.size() / 2), w.end());
+    if (w[w.size() / 2] < 0.5) {
+      for (long u : part)
+        g.state[size_t(u)] = kOutside;
+      opened += long(part.size());
+    }
+  }
+  std::replace(g.state.begin(), g.state.end(), kKept, kInside);
+  return opened;
+}
+
 ExteriorSamples shell_neighbours(const ExteriorGrid& g, long most) {
   std::vector<long> found;
   const long step[3] = {1, g.n[0], g.n[0] * g.n[1]};
@@ -145,9 +189,7 @@ ExteriorSamples shell_neighbours(const ExteriorGrid& g, long most) {
   ExteriorSamples r;
   r.X.resize(Eigen::Index((found.size() + k - 1) / k), 3);
   for (size_t i = 0; i < found.size(); i += k) {
-    const auto [x, y, z] = coords(g, found[i]);
-    r.X.row(Eigen::Index(i / k)) =
-        (g.lo + g.h * (Eigen::Array3d(double(x), double(y), double(z)) + 0.5)).matrix().transpose();
+    r.X.row(Eigen::Index(i / k)) = centre(g, found[i]).transpose();
     r.side.push_back(g.state[size_t(found[i])] == kOutside ? 1 : -1);
   }
   return r;

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace interlin::detail {
@@ -34,6 +35,15 @@ ExteriorGrid exterior_grid(const Eigen::MatrixX3d& P, double voxel);
 
 // The side of x the grid reads: +1 outside (also beyond the grid), -1 inside, 0 in the shell.
 int exterior_side(const ExteriorGrid& g, const Eigen::Vector3d& x);
+
+// Inside parts (face-connected free voxels the fill did not reach) that the generalized winding
+// number w reads as outside, made outside: pockets whose way out the shell closes, such as an
+// impeller's passages between blades under its shroud, narrower than about 4 voxels. A part is
+// a pocket when the median of w at up to 64 of its voxel centres (evenly spread in fill order)
+// is below 1/2 (w is about 1 inside a closed surface with outward normals, 0 outside). Returns
+// the number of voxels opened.
+long open_pockets(ExteriorGrid& g, const std::function<double(const Eigen::Vector3d&)>& winding,
+                  int threads = 0);
 
 // Free voxels next to the shell (a face neighbour in it): their centres (#S by 3) and sides (+1
 // outside, -1 inside), every k-th in storage order with k chosen so that #S <= most.

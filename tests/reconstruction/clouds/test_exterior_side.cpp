@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace interlin;
@@ -88,4 +89,44 @@ TEST_CASE("exterior votes: degenerate input and the voxel limit", "[clouds][norm
   // 2^26, so the call returns, and its votes are still never wrong
   const Tally t = tally(detail::exterior_votes(c.points, c.normals, 1e-6));
   CHECK(t.wrong == 0);
+}
+
+TEST_CASE("open pockets: inside parts the winding number reads as outside become outside",
+          "[clouds][normals]") {
+  // Two unit spheres of 6000 points, centres 3 apart: two inside parts the fill cannot reach.
+  const PointCloud a = test::sample_shape({test::Shape::sphere}, 6000, 0, 3);
+  Eigen::MatrixX3d P(12000, 3);
+  P << a.points, a.points.rowwise() + Eigen::RowVector3d(3, 0, 0);
+  const double voxel = voxel_for(4 * M_PI, 6000);
+  const detail::ExteriorGrid grid = detail::exterior_grid(P, voxel);
+  auto count = [](const detail::ExteriorGrid& g, std::uint8_t s) {
+    return long(std::count(g.state.begin(), g.state.end(), s));
+  };
+  const long inside = count(grid, detail::ExteriorGrid::kInside);
+  REQUIRE(inside > 1000);
+  auto opened = [&](auto winding) {
+    detail::ExteriorGrid g = grid;
+    const long n = detail::open_pockets(g, winding, 1);
+    CHECK(count(g, detail::ExteriorGrid::kInside) == inside - n);
+    CHECK(count(g, detail::ExteriorGrid::kShell) == count(grid, detail::ExteriorGrid::kShell));
+    return std::pair{n, g};
+  };
+  // the exact winding number (1 in either ball): nothing opened
+  auto exact = [](const Eigen::Vector3d& x) {
+    return x.norm() < 1 || (x - Eigen::Vector3d(3, 0, 0)).norm() < 1 ? 1.0 : 0.0;
+  };
+  CHECK(opened(exact).first == 0);
+  // the second ball read as outside: exactly its inside opened, the first one's kept
+  auto first_only = [](const Eigen::Vector3d& x) { return x.norm() < 1 ? 1.0 : 0.0; };
+  const auto [n, g] = opened(first_only);
+  long second = 0; // inside voxels of the second ball (centre x beyond 1.5)
+  for (long v = 0; v < long(grid.state.size()); ++v)
+    second += grid.state[size_t(v)] == detail::ExteriorGrid::kInside &&
+              grid.lo(0) + grid.h * (double(v % grid.n[0]) + 0.5) > 1.5;
+  CHECK(n == second);
+  CHECK(detail::exterior_side(g, Eigen::Vector3d(0, 0, 0)) == -1);
+  CHECK(detail::exterior_side(g, Eigen::Vector3d(3, 0, 0)) == 1);
+  // a median of 1/2 or more keeps a part: a winding number of 0.6 inside keeps both
+  CHECK(opened([](const Eigen::Vector3d&) { return 0.6; }).first == 0);
+  CHECK(opened([](const Eigen::Vector3d&) { return 0.4; }).first == inside);
 }

@@ -118,7 +118,8 @@ struct CloudFitInfo {
   bool flipped = false;             // the normals pointed inward and were flipped
   double seconds = 0;
   double spacing = 0;    // median point spacing (sqrt of the area per point)
-  double scan_noise = 0; // noise_aware: sigma_n (estimate_scan_noise or the given noise)
+  double scan_noise = 0; // sigma_n (estimate_scan_noise or the given noise); on a clean cloud
+                         // (below 0.002 spacings) also the fits' acceptance sigma
   int min_points = 0;    // points per fit used
   double acceptance = 1; // multiple of the acceptance thresholds used
 };
