@@ -38,10 +38,10 @@ int exterior_side(const ExteriorGrid& g, const Eigen::Vector3d& x);
 
 // Inside parts (face-connected free voxels the fill did not reach) that the generalized winding
 // number w reads as outside, made outside: pockets whose way out the shell closes, such as an
-// impeller's passages between blades under its shroud, narrower than about 4 voxels. A part is
-// a pocket when the median of w at up to 64 of its voxel centres (evenly spread in fill order)
-// is below 1/2 (w is about 1 inside a closed surface with outward normals, 0 outside). Returns
-// the number of voxels opened.
+// impeller's passages between blades under its shroud, narrower than about 4 voxels. A part of
+// n voxels is a pocket when the median of w at every max(1, n / 64)-th of its voxel centres in
+// fill order (at most 127 of them) is below 1/2 (w is about 1 inside a closed surface with
+// outward normals, 0 outside). Returns the number of voxels opened.
 long open_pockets(ExteriorGrid& g, const std::function<double(const Eigen::Vector3d&)>& winding,
                   int threads = 0);
 
