@@ -153,10 +153,11 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
       used = 0;
     }
     if (eq == std::string::npos || used != item.size() - eq - 1 ||
-        !(v > 0 ||
-          ((key == "noise_aware" || key == "sample_coarse" || key == "exterior_side") && v == 0)))
+        !(v > 0 || ((key == "noise_aware" || key == "sample_coarse" || key == "exterior_side" ||
+                     key == "smooth_points") &&
+                    v == 0)))
       throw std::invalid_argument("--fit wants KEY=POSITIVE (noise_aware, sample_coarse, "
-                                  "exterior_side: 0 or 1), not '" +
+                                  "exterior_side, smooth_points: 0 or 1), not '" +
                                   item + "'");
     if (key == "support")
       o.support = v;
@@ -174,6 +175,8 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
       o.sample_coarse = v >= 1;
     else if (key == "exterior_side")
       o.exterior_side = v >= 1;
+    else if (key == "smooth_points")
+      o.smooth_points = v >= 1;
     else if (key == "acceptance_per_rho")
       o.acceptance_per_rho = v;
     else if (key == "noise_x")
@@ -182,7 +185,7 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
       throw std::invalid_argument("--fit: unknown key '" + key +
                                   "' (known: support, fit_ball, min_points, max_depth, noise, "
                                   "noise_x, noise_aware, acceptance_per_rho, sample_coarse, "
-                                  "exterior_side)");
+                                  "exterior_side, smooth_points)");
   }
   return o;
 }

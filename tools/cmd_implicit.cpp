@@ -74,6 +74,9 @@ Point clouds:
                          any size), hrbf (Hermite RBF interpolant of the points and their
                          normals, at most 1000 points)
   --max-depth D          unstructured fit: octree levels (default 12)
+  --smooth-points MODE   unstructured fit: auto (default: a noisy scan's points are first moved
+                         onto local quadrics of up to 512 neighbours, as many as the shape
+                         allows), off (the points as they come)
   --span-smoothing MODE  sectioned scans: auto (default: the sections become isocurves of one
                          least-squares surface through all slices when Mallows' C_p prefers it),
                          off (each section fitted to its slice alone)
@@ -166,17 +169,10 @@ void refuse(const ParsedArgs& a, const std::vector<const char*>& options, const 
       throw UsageError(std::string("--") + o + " " + why);
 }
 
-const std::vector<const char*> kCloudOptions = {"slices",
-                                                "noise",
-                                                "normals",
-                                                "outliers",
-                                                "outlier-ratio",
-                                                "voxel",
-                                                "normal-neighbours",
-                                                "sheet-normals",
-                                                "max-depth",
-                                                "span-smoothing",
-                                                "fit"};
+const std::vector<const char*> kCloudOptions = {
+    "slices",        "noise",         "normals",           "outliers",
+    "outlier-ratio", "voxel",         "normal-neighbours", "sheet-normals",
+    "max-depth",     "smooth-points", "span-smoothing",    "fit"};
 
 void sections_job(const ParsedArgs& a, const std::string& input, const std::string& output,
                   const Progress& progress) {
@@ -268,6 +264,7 @@ int run_implicit(int argc, const char* const* argv) {
                       {"normal-neighbours", 0, true, false},
                       {"sheet-normals", 0, true, false},
                       {"max-depth", 0, true, false},
+                      {"smooth-points", 0, true, false},
                       {"fit", 0, true, false},
                       {"span-smoothing", 0, true, false},
                       {"max-grid-nodes", 0, true, false}},

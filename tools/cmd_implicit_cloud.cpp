@@ -74,7 +74,7 @@ void unused(const ParsedArgs& a, const std::vector<const char*>& options, const 
 
 void sectioned(const ParsedArgs& a, const PointCloud& c, const SliceFamily& family, double noise,
                SectionBodyOptions bo, const std::string& output, const Progress& progress) {
-  unused(a, {"max-depth", "fit"}, "it applies to the unstructured fit", progress);
+  unused(a, {"max-depth", "fit", "smooth-points"}, "it applies to the unstructured fit", progress);
   SliceFitOptions so;
   so.noise = noise;
   so.threads = bo.threads;
@@ -181,6 +181,10 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
   std::cout << "  noise        sigma = " << fmt(info.noise, 3)
             << (info.noise_estimated ? " (estimated from the points)" : " (given)")
             << "; point spacing " << fmt(info.spacing, 4) << "\n";
+  if (info.smoothed_points > 0)
+    std::cout << "  smoothing    " << info.smoothed_points
+              << " points moved onto local quadrics (median " << info.smoothing_neighbours
+              << " neighbours, scan noise " << fmt(info.smoothing_noise, 3) << ")\n";
   std::cout << "  octree       " << info.leaves << " leaves (" << info.two_sheet_leaves
             << " with two sheets, " << info.far_leaves << " far from the points, "
             << info.sign_fixed_leaves << " re-signed by the winding number, "
@@ -207,9 +211,11 @@ void cloud_job(const ParsedArgs& a, const std::string& input, const std::string&
       if (a.has(o))
         throw UsageError(std::string("--") + o +
                          " applies to sections and sectioned scans (not with --slices none)");
-  if (kind != SliceKind::none && kind != SliceKind::automatic && a.has("max-depth"))
-    throw UsageError("--max-depth applies to the unstructured fit (not with --slices " +
-                     a.get("slices") + ")");
+  for (const char* o : {"max-depth", "smooth-points"})
+    if (kind != SliceKind::none && kind != SliceKind::automatic && a.has(o))
+      throw UsageError(std::string("--") + o +
+                       " applies to the unstructured fit (not with --slices " + a.get("slices") +
+                       ")");
   double noise = 0;
   if (a.has("noise")) {
     noise = parse_double("noise", a.get("noise"));
@@ -219,13 +225,17 @@ void cloud_job(const ParsedArgs& a, const std::string& input, const std::string&
   if (const std::string m = a.get("span-smoothing", "auto"); m != "auto" && m != "off")
     throw UsageError("--span-smoothing: expected auto or off, got '" + m + "'");
   const std::string fit = parse_choice("fit", a.get("fit", "auto"), {"auto", "pu", "hrbf"});
-  if (fit == "hrbf" && a.has("max-depth"))
-    throw UsageError("--max-depth applies to the partition of unity (not with --fit hrbf)");
+  for (const char* o : {"max-depth", "smooth-points"})
+    if (fit == "hrbf" && a.has(o))
+      throw UsageError(std::string("--") + o +
+                       " applies to the partition of unity (not with --fit hrbf)");
   // Every option is checked before any work.
   const CloudPrepOptions po = prep_options(a, progress);
   CloudFitOptions fo;
   fo.noise = noise;
   fo.max_depth = parse_int("max-depth", a.get("max-depth", "12"), 1, 20);
+  fo.smooth_points =
+      parse_choice("smooth-points", a.get("smooth-points", "auto"), {"auto", "off"}) == "auto";
   fo.threads = po.threads;
   fo.progress = progress;
   const SectionBodyOptions bo = section_body_options(a, progress);

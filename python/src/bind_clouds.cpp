@@ -9,6 +9,7 @@
 #include "interlin/reconstruction/clouds/orient_normals.h"
 #include "interlin/reconstruction/clouds/prepare_cloud.h"
 #include "interlin/reconstruction/clouds/read_point_cloud.h"
+#include "interlin/reconstruction/clouds/smooth_scan_points.h"
 
 #include <memory>
 
@@ -126,6 +127,22 @@ void bind_cloud_steps(py::module_& m) {
         "Neighbours for PCA normals at noise sigma: 2 sqrt(pi) sigma / (spacing 0.1 rad), "
         "clamped to [k_min, k_max].");
   m.def(
+      "smooth_scan_points",
+      [](const MatrixX3d& P, const MatrixX3d& N, double sigma, int k_max, double kappa,
+         int threads) {
+        SmoothedPoints s;
+        {
+          py::gil_scoped_release release;
+          s = smooth_scan_points(P, N, sigma, k_max, kappa, threads);
+        }
+        return py::make_tuple(std::move(s.P), std::move(s.N), std::move(s.k));
+      },
+      py::arg("P"), py::arg("N"), py::arg("sigma"), py::arg("k_max") = 512, py::arg("kappa") = 1.5,
+      py::arg("threads") = 0,
+      "Noisy points P (N, 3) with oriented normals N moved onto local quadrics of 16, 32, ..., "
+      "k_max neighbours, the number chosen per point by Lepski's method at noise sigma -> (P, N, "
+      "k).");
+  m.def(
       "prepare_cloud",
       [](const PointCloud& cloud, const std::string& path, int outlier_neighbours,
          double outlier_ratio, double voxel, const std::string& normals, int normal_neighbours,
@@ -172,10 +189,11 @@ rms_distance, max_distance, within_3_sigma, ...), leaves (number of local fits).
   m.def(
       "fit_cloud_implicit",
       [](const PointCloud& cloud, double noise, int min_points, int max_depth, double support,
-         double fit_ball, int threads) {
+         double fit_ball, bool smooth_points, int threads) {
         CloudFitOptions o;
         o.noise = noise, o.min_points = min_points, o.max_depth = max_depth;
         o.support = support, o.fit_ball = fit_ball, o.threads = threads;
+        o.smooth_points = smooth_points;
         py::gil_scoped_release release;
         CloudModel c;
         c.model = std::make_shared<const CloudImplicit>(fit_cloud_implicit(cloud, o, &c.info));
@@ -184,10 +202,11 @@ rms_distance, max_distance, within_3_sigma, ...), leaves (number of local fits).
       },
       py::arg("cloud"), py::arg("noise") = 0.0, py::arg("min_points") = 0,
       py::arg("max_depth") = 12, py::arg("support") = 0.6, py::arg("fit_ball") = 0.75,
-      py::arg("threads") = 0,
+      py::arg("smooth_points") = true, py::arg("threads") = 0,
       R"(Fits the multi-level partition-of-unity implicit to a cloud with oriented normals
 (prepare_cloud) -> CloudModel. noise 0: estimated from the points;
-min_points 0: automatic (10 per fit on a clean cloud, 20 on a noisy one, more by the noise).)");
+min_points 0: automatic (10 per fit on a clean cloud, 20 on a noisy one, more by the noise);
+smooth_points: noisy scans' points first moved onto local quadrics (smooth_scan_points).)");
 }
 
 } // namespace
@@ -207,7 +226,10 @@ py::dict cloud_fit_dict(const CloudFitInfo& i) {
       field("flipped", &CloudFitInfo::flipped), field("spacing", &CloudFitInfo::spacing),
       field("scan_noise", &CloudFitInfo::scan_noise),
       field("min_points", &CloudFitInfo::min_points),
-      field("acceptance", &CloudFitInfo::acceptance));
+      field("acceptance", &CloudFitInfo::acceptance),
+      field("smoothed_points", &CloudFitInfo::smoothed_points),
+      field("smoothing_noise", &CloudFitInfo::smoothing_noise),
+      field("smoothing_neighbours", &CloudFitInfo::smoothing_neighbours));
 }
 
 SheetNormals sheet_normals_choice(const std::string& s) {

@@ -273,7 +273,8 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
          const py::object& param, const std::string& span, const std::string& slices, double noise,
          int max_depth, int outliers, double outlier_ratio, double voxel,
          const std::string& normals, int normal_neighbours, const std::string& sheet_normals,
-         const std::string& span_smoothing, const std::string& fit) {
+         const std::string& span_smoothing, const std::string& fit,
+         const std::string& smooth_points) {
         if (resolution < 8 || resolution > 1024)
           throw py::value_error("resolution: expected 8 .. 1024 grid cells");
         if (!(band.first > 0 && band.second > band.first))
@@ -328,6 +329,8 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
             choice<bool>({{"auto", true}, {"off", false}}, span_smoothing, "span_smoothing");
         a.method =
             choice<std::string>({{"auto", "auto"}, {"pu", "pu"}, {"hrbf", "hrbf"}}, fit, "fit");
+        a.fit.smooth_points =
+            choice<bool>({{"auto", true}, {"off", false}}, smooth_points, "smooth_points");
         return cloud_body(input, a, o);
       },
       py::arg("input"), py::arg("resolution") = 96, py::arg("band") = std::pair{1.5, 3.0},
@@ -340,6 +343,7 @@ far-field grid and band (inner, outer) in distance units (None for cloud_pu), bo
       py::arg("outlier_ratio") = 3.0, py::arg("voxel") = 0.0, py::arg("normals") = "auto",
       py::arg("normal_neighbours") = 0, py::arg("sheet_normals") = "auto",
       py::arg("span_smoothing") = "auto", py::arg("fit") = "auto",
+      py::arg("smooth_points") = "auto",
       R"(The implicit equation of a body, as `interlin implicit` -> ImplicitModel.
 input            sections (a section file, a SectionSet, or a list of Section / (P, 3) arrays):
                  the body of the loft through every section, closed by ruled end caps; a point
@@ -359,6 +363,8 @@ slices           clouds: "auto" (detect planar, then radial slices), "planar", "
                  (always the unstructured fit)
 noise            clouds: the scan noise sigma (0: estimated)
 max_depth        unstructured clouds: the octree's deepest level
+smooth_points    unstructured clouds: "auto" (noisy scans' points first moved onto local
+                 quadrics, as many neighbours as the shape allows) or "off"
 fit              unstructured clouds: "auto" (at most 500 points with the file's normals: the
                  better of "pu" and "hrbf" by five-fold hold-out, report holdout_pu and
                  holdout_hrbf; else "pu"), "pu" (partition of unity, kind cloud_pu), "hrbf"

@@ -136,6 +136,30 @@ TEST_CASE("CLI implicit: sheet normals on clean clouds by default, --sheet-norma
   CHECK_THAT(r.out, Catch::Contains(kept));
 }
 
+TEST_CASE("CLI implicit: noisy scans' points smoothed by default, --smooth-points off",
+          "[cli][implicit][clouds]") {
+  TempDir d("implicitsmooth");
+  write_cloud(d / "clean.xyz", sample_shape({Shape::sphere}, 3000, 0, 46));
+  write_cloud(d / "noisy.xyz", sample_shape({Shape::sphere}, 3000, 0.01, 46));
+  const std::string o = " -o " + d / "x.ifl -q";
+  const std::string smoothed = "  smoothing    3000 points moved onto local quadrics (median ";
+  Run r = run("implicit " + d / "noisy.xyz" + o);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains(smoothed));
+  r = run("implicit " + d / "noisy.xyz" + o + " --smooth-points off");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, !Catch::Contains("smoothing"));
+  r = run("implicit " + d / "clean.xyz" + o);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, !Catch::Contains("smoothing"));
+  expect_error(run("implicit " + d / "noisy.xyz" + o + " --smooth-points sometimes"), 2,
+               "--smooth-points");
+  expect_error(run("implicit " + d / "noisy.xyz" + o + " --slices planar --smooth-points off"), 2,
+               "--smooth-points applies to the unstructured fit (not with --slices planar)");
+  expect_error(run("implicit " + d / "noisy.xyz" + o + " --fit hrbf --smooth-points off"), 2,
+               "--smooth-points applies to the partition of unity");
+}
+
 TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by default; points "
           "per fit",
           "[cli][implicit][clouds]") {

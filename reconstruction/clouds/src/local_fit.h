@@ -11,6 +11,16 @@
 
 namespace interlin::detail {
 
+// The rows t1, t2, n of an orthonormal frame whose third axis is the unit vector n.
+inline Eigen::Matrix3d tangent_frame(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d a =
+      std::abs(n(0)) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d t1 = n.cross(a).normalized();
+  Eigen::Matrix3d F;
+  F << t1.transpose(), n.cross(t1).transpose(), n.transpose();
+  return F;
+}
+
 // Wendland's C2 function psi(r) = (1 - r)^4 (4 r + 1) on [0, 1), 0 beyond.
 inline double wendland(double r) {
   if (r >= 1)

@@ -99,6 +99,11 @@ struct CloudFitOptions {
   // After fitting, leaves whose sign contradicts the flood fill's inside and outside are negated
   // (fit_cloud_implicit; info.exterior_negated_leaves). False: the fits as they come.
   bool exterior_side = true;
+  // Noisy scans (scan noise, given or estimate_scan_noise, at least kCleanScanNoise spacings):
+  // the points are first moved onto local quadrics of up to 512 neighbours, each point's number
+  // chosen by Lepski's method (smooth_scan_points); the octree, its leaves accepted and sized by
+  // the scan noise as without smoothing, fits the moved points. False: the points as they come.
+  bool smooth_points = true;
   int threads = 0; // 0: all cores
   // Progress lines (one per octree level); called from the calling thread.
   std::function<void(const std::string&)> progress;
@@ -122,9 +127,17 @@ struct CloudFitInfo {
                          // (below 0.002 spacings) also the fits' acceptance sigma
   int min_points = 0;    // points per fit used
   double acceptance = 1; // multiple of the acceptance thresholds used
+  // smooth_points: the points moved (0: not smoothed), the scan noise of the input that the
+  // smoothing used (then also noise and scan_noise: the octree's sigma), the median number of
+  // neighbours chosen. rms_distance .. within_3_sigma are measured at the input points.
+  long smoothed_points = 0;
+  double smoothing_noise = 0;
+  int smoothing_neighbours = 0;
 };
 
 // Fits the implicit function to a cloud with consistently oriented normals (orient_normals).
+// A noisy scan's points are first moved onto local quadrics (smooth_points, smooth_scan_points.h)
+// and the octree below fits the moved points with the scan noise's thresholds.
 // A cell of side s has the support ball R = support * s * sqrt(3) around its centre; the points
 // in the ball of radius fit_ball * s * sqrt(3) (weights psi(|p - c| / that radius)) are fitted
 // by one or two sheets; the cell is a leaf when the fit's

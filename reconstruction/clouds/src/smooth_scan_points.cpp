@@ -1,0 +1,236 @@
+// Lepski's bandwidth choice for the local quadric projection of scan points
+// (smooth_scan_points.h).
+#include "interlin/reconstruction/clouds/smooth_scan_points.h"
+
+#include "local_fit.h"
+#include "nearest_neighbours.h"
+
+#include "interlin/reconstruction/meshing/parallel_for.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace interlin {
+
+namespace {
+
+using Eigen::Index;
+using Eigen::Vector3d;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+constexpr int kFirstRung = 16;           // the smallest neighbourhood: 16, 32, ..., k_max
+constexpr int kLeastOnSheet = 12;        // twice the quadric's 6 coefficients
+const double kSheetCos = 0.5;            // neighbours within 60 degrees of the point's normal
+constexpr double kCurvatureRidge = 1e-9; // keeps one scan line's quadric solvable (scaled units)
+
+// A rung's quadric: w = h(u, v) in the frame (rows t1, t2, n) at origin, coordinates divided by
+// s; its height at the origin, that height's standard deviation, and the radius of its points.
+struct Rung {
+  Vector3d origin;
+  Eigen::Matrix3d frame;
+  double s = 1;
+  Vector6d c;
+  double h = 0, sd = 0, reach = 0;
+};
+
+// The point x moved along the rung's frame normal onto its quadric (the same u, v), and the
+// quadric's normal there.
+void project(const Rung& r, const Vector3d& x, Vector3d& y, Vector3d& normal) {
+  const Vector3d l = r.frame * (x - r.origin) / r.s;
+  const double u = l(0), v = l(1);
+  const Eigen::Matrix<double, 1, 6> phi{u * u, u * v, v * v, u, v, 1};
+  const double hu = 2 * r.c(0) * u + r.c(1) * v + r.c(3), hv = r.c(1) * u + 2 * r.c(2) * v + r.c(4);
+  y = r.origin + r.s * r.frame.transpose() * Vector3d(u, v, phi * r.c);
+  normal = (r.frame.transpose() * Vector3d(-hu, -hv, 1)).normalized();
+}
+
+// The quadric of the moments A = sum phi phi^T, b = sum phi w (coordinates divided by r.s) at
+// one rung into r (origin, frame and s set); false when singular.
+bool solve_rung(const Matrix6d& A, const Vector6d& b, double sigma, Rung& r) {
+  Matrix6d M = A;
+  for (int j = 0; j < 3; ++j)
+    M(j, j) += kCurvatureRidge * A(5, 5);
+  const Eigen::LDLT<Matrix6d> ldlt(M);
+  if (ldlt.info() != Eigen::Success)
+    return false;
+  r.c = ldlt.solve(b);
+  const Vector6d e5 = ldlt.solve(Vector6d::Unit(5)); // (A^T A)^-1 e_5: the intercept's variance
+  if (!r.c.allFinite() || !(e5(5) > 0))
+    return false;
+  r.h = r.c(5) * r.s;
+  r.sd = sigma * std::sqrt(e5(5));
+  return true;
+}
+
+// The k nearest indexed points of p in rungs: the 16 nearest first, then the 16 next, the 32
+// next, ..., each rung in no order (the fits need only the rungs). FLANN's k-nearest search
+// keeps its result sorted by insertion, k^2 work per query at k = 1,024; a radius search over the
+// disc that holds k points at the spacing of p's 16 nearest, then one selection per rung, is
+// linear.
+void nearest_by_rung(const detail::NeighbourIndex& index, const Vector3d& p, int k,
+                     std::vector<int>& idx, std::vector<double>& d2) {
+  index.knn(p, kFirstRung, idx, d2);
+  if (int(idx.size()) < kFirstRung || k <= kFirstRung)
+    return;
+  constexpr double kRadiusMargin = 1.2; // room for the density's variation over the disc
+  const double r = kRadiusMargin * std::sqrt(d2.back() * double(k) / kFirstRung);
+  index.radius(p, r, idx, d2);
+  std::vector<std::pair<double, int>> order(idx.size());
+  for (size_t j = 0; j < idx.size(); ++j)
+    order[j] = {d2[j], idx[j]};
+  const size_t keep = std::min(order.size(), size_t(k)); // >= 16: the 16 nearest are inside
+  // rungs [a, b): b = 16, 32, ... and the last one ends at keep (k need not be 16 times 2^m)
+  for (size_t a = 0, b = kFirstRung; a < keep; a = b, b = std::min(2 * b, keep))
+    if (b < order.size())
+      std::nth_element(order.begin() + long(a), order.begin() + long(b), order.end());
+  idx.resize(keep);
+  d2.resize(keep);
+  for (size_t j = 0; j < keep; ++j)
+    std::tie(d2[j], idx[j]) = order[j];
+}
+
+// Points and normals as rows (x, y, z, nx, ny, nz) in Z-order: a point's neighbours lie near it
+// in memory (in input order each of the 1,024 neighbours is a cache miss, and they took most
+// of the time).
+using PointRows = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
+
+std::vector<Index> z_order(const Eigen::MatrixX3d& P) {
+  const Vector3d lo = P.colwise().minCoeff();
+  const double extent = (P.colwise().maxCoeff().transpose() - lo).maxCoeff();
+  const double scale = extent > 0 ? double((1u << 20) - 1) / extent : 0;
+  std::vector<std::pair<std::uint64_t, Index>> key(size_t(P.rows()));
+  for (Index i = 0; i < P.rows(); ++i) {
+    std::uint64_t k = 0;
+    for (int a = 0; a < 3; ++a) {
+      const auto v = std::uint64_t((P(i, a) - lo(a)) * scale);
+      for (int b = 0; b < 20; ++b)
+        k |= ((v >> b) & 1u) << (3 * b + a);
+    }
+    key[size_t(i)] = {k, i};
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<Index> order(key.size());
+  for (size_t j = 0; j < key.size(); ++j)
+    order[j] = key[j].second;
+  return order;
+}
+
+// The chosen rung at row i of X (Lepski); false when no rung has kLeastOnSheet points on the
+// sheet.
+bool smooth_point(const PointRows& X, Index i, const detail::NeighbourIndex& index, double sigma,
+                  int k_max, double kappa, Rung& chosen, int& k_chosen) {
+  Rung r;
+  r.origin = X.row(i).head<3>().transpose();
+  const Vector3d n = X.row(i).tail<3>().transpose();
+  std::vector<int> idx;
+  std::vector<double> d2;
+  nearest_by_rung(index, r.origin, k_max, idx, d2);
+  r.frame = detail::tangent_frame(n);
+  const double far = std::sqrt(*std::max_element(d2.begin(), d2.end()));
+  r.s = far > 0 ? far : 1.0;
+  Matrix6d A = Matrix6d::Zero();
+  Vector6d b = Vector6d::Zero();
+  std::vector<Rung> rungs;
+  int on_sheet = 0;
+  for (size_t j = 0, rung = kFirstRung; j < idx.size(); ++j) {
+    const auto q = X.row(idx[j]);
+    if (q.tail<3>().dot(n.transpose()) >= kSheetCos) {
+      const Vector3d l = r.frame * (q.head<3>().transpose() - r.origin) / r.s;
+      Vector6d phi;
+      phi << l(0) * l(0), l(0) * l(1), l(1) * l(1), l(0), l(1), 1;
+      A.selfadjointView<Eigen::Lower>().rankUpdate(phi);
+      b += phi * l(2);
+      ++on_sheet;
+    }
+    if (j + 1 != rung && j + 1 != idx.size())
+      continue;
+    rung *= 2;
+    if (on_sheet < kLeastOnSheet ||
+        !solve_rung(Matrix6d(A.selfadjointView<Eigen::Lower>()), b, sigma, r))
+      continue;
+    r.reach = j + 1 < idx.size() ? std::sqrt(d2[j + 1]) : far;
+    for (const Rung& q : rungs)
+      if (std::abs(r.h - q.h) > kappa * q.sd)
+        return !rungs.empty();
+    rungs.push_back(r);
+    chosen = r;
+    k_chosen = int(j + 1);
+  }
+  return !rungs.empty();
+}
+
+} // namespace
+
+SmoothedPoints smooth_scan_points(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
+                                  double sigma, int k_max, double kappa, int threads) {
+  if (N.rows() != P.rows() || !(sigma > 0) || k_max < kFirstRung || !(kappa > 0) ||
+      !P.allFinite() || !N.allFinite())
+    throw std::invalid_argument("smooth_scan_points: bad inputs");
+  SmoothedPoints out{P, N, Eigen::VectorXi::Zero(P.rows())};
+  if (P.rows() == 0)
+    return out;
+  const std::vector<Index> order = z_order(P);
+  PointRows X(P.rows(), 6);
+  for (Index j = 0; j < P.rows(); ++j)
+    X.row(j) << P.row(order[size_t(j)]), N.row(order[size_t(j)]);
+  const detail::NeighbourIndex index(X.leftCols<3>());
+  // Every kAnchorStride-th point in Z-order (spread over the surface) is an anchor with its own
+  // rungs; another point is projected onto its nearest anchor's quadric when that quadric has at
+  // least kAnchorRung points and reaches kAnchorReach times the distance (the quadric of many
+  // points is as good a few spacings off its centre), else it gets its own rungs (near edges,
+  // where the rungs stop early).
+  constexpr Index kAnchorStride = 8;
+  constexpr int kAnchorRung = 128;
+  constexpr double kAnchorReach = 4;
+  constexpr int kAnchorChoice = 4;
+  const Index anchors = (P.rows() + kAnchorStride - 1) / kAnchorStride;
+  std::vector<Rung> quadric(static_cast<size_t>(anchors));
+  std::vector<int> anchor_k(static_cast<size_t>(anchors), 0);
+  detail::parallel_for(anchors, detail::resolve_threads(threads), [&](long a, int) {
+    if (!smooth_point(X, a * kAnchorStride, index, sigma, k_max, kappa, quadric[size_t(a)],
+                      anchor_k[size_t(a)]))
+      anchor_k[size_t(a)] = 0;
+  });
+  const detail::NeighbourIndex anchor_index(
+      X(Eigen::seq(0, Eigen::last, kAnchorStride), Eigen::seqN(0, 3)));
+  detail::parallel_for(P.rows(), detail::resolve_threads(threads), [&](long j, int) {
+    const Vector3d x = X.row(j).head<3>().transpose();
+    std::vector<int> idx;
+    std::vector<double> d2;
+    anchor_index.knn(x, kAnchorChoice, idx, d2);
+    size_t m = 0; // the nearest anchor on the same sheet (a thin wall's other side is near too)
+    while (m + 1 < idx.size() &&
+           X.row(idx[m] * kAnchorStride).tail<3>().dot(X.row(j).tail<3>()) < kSheetCos)
+      ++m;
+    const size_t a = size_t(idx[m]);
+    Rung own;
+    const Rung* r = &quadric[a];
+    int k = anchor_k[a];
+    if (j % kAnchorStride != 0 &&
+        (k < kAnchorRung ||
+         X.row(idx[m] * kAnchorStride).tail<3>().dot(X.row(j).tail<3>()) < kSheetCos ||
+         kAnchorReach * kAnchorReach * d2[m] > r->reach * r->reach)) {
+      r = &own;
+      if (!smooth_point(X, j, index, sigma, k_max, kappa, own, k))
+        k = 0;
+    }
+    if (k == 0)
+      return;
+    const Index i = order[size_t(j)];
+    Vector3d y, normal;
+    project(*r, x, y, normal);
+    out.P.row(i) = y.transpose();
+    out.N.row(i) = normal.transpose();
+    out.k(i) = k;
+  });
+  return out;
+}
+
+} // namespace interlin
