@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -288,6 +289,36 @@ void negate(LocalFit& f) {
   f.conjunction = !f.conjunction;
 }
 
+// The lattice points of f's support ball (kExteriorLattice^3 in its cube) that the flood fill
+// labels, by side, and those where Q's sign agrees or disagrees with the label.
+struct ExteriorVotes {
+  int agree = 0, disagree = 0, inside = 0, outside = 0;
+};
+// measured 5, 7, 9, 11 lattice points per axis, at least 4, 8, 16 of them, shares 0.6 to 0.9
+// on the blades, the UAV, the car and the impeller (docs/benchmarks.md): 9, 8, 0.9 best
+constexpr int kExteriorLattice = 9, kExteriorLeast = 8;
+constexpr double kExteriorShare = 0.9;
+
+ExteriorVotes exterior_votes(const detail::ExteriorGrid& g, const LocalFit& f) {
+  ExteriorVotes v;
+  for (int i = 0; i < kExteriorLattice; ++i)
+    for (int j = 0; j < kExteriorLattice; ++j)
+      for (int k = 0; k < kExteriorLattice; ++k) {
+        const Vector3d t =
+            Vector3d(i, j, k) * (2.0 / (kExteriorLattice - 1)) - Vector3d::Ones(); // [-1, 1]^3
+        if (t.squaredNorm() > 1)
+          continue;
+        const Vector3d x = f.centre + f.radius * t;
+        const int side = detail::exterior_side(g, x);
+        const double q = detail::fit_value(f, x, nullptr);
+        (side < 0 ? v.inside : v.outside) += side != 0;
+        if (side == 0 || q == 0)
+          continue;
+        ((q > 0) == (side < 0) ? v.agree : v.disagree)++;
+      }
+  return v;
+}
+
 // A leaf whose Q disagrees in sign with the flood fill's side (exterior_side.h) at kExteriorShare
 // of the lattice points of its support ball that the fill labels (at least kExteriorLeast of
 // kExteriorLattice^3) is negated: its normals were wrong where the winding number cannot tell,
@@ -300,39 +331,29 @@ void negate(LocalFit& f) {
 // (docs/benchmarks.md, "Far leaves on the flood fill's side").
 bool check_exterior(const Points& pts, const detail::NeighbourIndex& index,
                     const detail::ExteriorGrid& g, LocalFit& f) {
-  // measured 5, 7, 9, 11 lattice points per axis, at least 4, 8, 16 of them, shares 0.6 to 0.9
-  // on the blades, the UAV, the car and the impeller (docs/benchmarks.md): 9, 8, 0.9 best
-  constexpr int kExteriorLattice = 9, kExteriorLeast = 8;
-  constexpr double kExteriorShare = 0.9;
-  int agree = 0, disagree = 0, inside = 0, outside = 0;
-  for (int i = 0; i < kExteriorLattice; ++i)
-    for (int j = 0; j < kExteriorLattice; ++j)
-      for (int k = 0; k < kExteriorLattice; ++k) {
-        const Vector3d t =
-            Vector3d(i, j, k) * (2.0 / (kExteriorLattice - 1)) - Vector3d::Ones(); // [-1, 1]^3
-        if (t.squaredNorm() > 1)
-          continue;
-        const Vector3d x = f.centre + f.radius * t;
-        const int side = detail::exterior_side(g, x);
-        const double q = detail::fit_value(f, x, nullptr);
-        (side < 0 ? inside : outside) += side != 0;
-        if (side == 0 || q == 0)
-          continue;
-        ((q > 0) == (side < 0) ? agree : disagree)++;
-      }
-  if ((inside == 0 || outside == 0) && disagree >= kExteriorLeast) {
+  const ExteriorVotes v = exterior_votes(g, f);
+  if ((v.inside == 0 || v.outside == 0) && v.disagree >= kExteriorLeast) {
     std::vector<int> idx;
     std::vector<double> d2;
     index.knn(f.centre, 1, idx, d2);
     if (d2[0] >= f.radius * f.radius) {
-      far_plane(pts, idx[0], inside > 0 ? 1.0 : 0.0, f);
+      far_plane(pts, idx[0], v.inside > 0 ? 1.0 : 0.0, f);
       return true;
     }
   }
-  if (disagree < kExteriorLeast || disagree < kExteriorShare * (agree + disagree))
+  if (v.disagree < kExteriorLeast || v.disagree < kExteriorShare * (v.agree + v.disagree))
     return false;
   negate(f);
   return true;
+}
+
+// Whether a leaf's fit contradicts the flood fill in part of its ball (at kExteriorLeast lattice
+// points, fewer than check_exterior's share): a thin wall's two sheets joined into a slab that
+// runs on past the wall's edge, F > 0 up to 0.65 cm off a noisy blade's tip, where the leaf holds
+// too few points to be split for its misfit (docs/benchmarks.md "Slabs past thin edges").
+bool contradicts_exterior(const detail::ExteriorGrid& g, const LocalFit& f) {
+  const ExteriorVotes v = exterior_votes(g, f);
+  return v.disagree >= kExteriorLeast && v.disagree < kExteriorShare * (v.agree + v.disagree);
 }
 
 // What decides a cell: the points per fit and the acceptance thresholds (kAcceptRms sigma,
@@ -386,7 +407,9 @@ struct Cell {
   // its children in gaps of the sampling); dense: its fit ball holds enough of the sample to be
   // split on it (split_on_sample), which a child's ball, inside its parent's, can only if the
   // parent's did; sampled: it was split on the sample
-  bool far = false, split = false, smooth = false, dense = false, sampled = false;
+  // exterior_split: split where its fit contradicted the flood fill (contradicts_exterior)
+  bool far = false, split = false, smooth = false, dense = false, sampled = false,
+       exterior_split = false;
 };
 
 // A ball of half the radius holds about a quarter of a surface's points: children get
@@ -435,10 +458,12 @@ bool split_on_sample(Cell& c, const detail::NeighbourIndex& sample, const Points
 }
 
 // Fits cell c (parent: the fit of the cell it came from, null if none or not smooth); decides
-// whether it is split.
+// whether it is split: for its misfit, or (exterior: the trusted flood fill, else null) where its
+// fit contradicts the fill.
 void process(Cell& c, const LocalFit* parent, const Points& pts,
              const detail::NeighbourIndex& index, const detail::NeighbourIndex* sample,
-             const CloudFitOptions& o, const Vector3d& origin, double root, const Rule& rule) {
+             const detail::ExteriorGrid* exterior, const CloudFitOptions& o, const Vector3d& origin,
+             double root, const Rule& rule) {
   const double side = root / double(1 << c.level);
   LocalFit& f = c.fit;
   f.level = c.level;
@@ -465,6 +490,8 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
   c.split = !accepted && c.level < o.max_depth && int(idx.size()) >= kSplitShare * rule.min_points;
   if (!ok && !c.split) // no usable fit and no refinement left: the nearest points' fit
     c.far = fit_sparse(pts, index, rule.min_points, parent, f);
+  if (ok && !c.split && exterior && c.level < o.max_depth && contradicts_exterior(*exterior, f))
+    c.split = c.exterior_split = true, c.smooth = false; // not passed on to gaps either
 }
 
 // Z-order (Morton) key of a leaf's cell at the resolution of level `depth` (<= 21): leaves sorted
@@ -482,10 +509,10 @@ std::uint64_t morton(const LocalFit& f, int depth) {
 // The flood fill's grid (exterior_side.h) at kVoxelSpacings point spacings, trusted when the
 // winding number agrees with its side at kTrustShare of at most kTrustProbes free voxels next to
 // the shell (a hole the shell does not close lets the fill into the inside: 54 to 72 % agreement
-// on the valve and the blade with a missing patch, 99.9 to 100 % on the closed scans), then
-// check_exterior on every leaf. Returns the leaves negated.
-long negate_by_exterior(const Points& pts, const detail::NeighbourIndex& index, double spacing,
-                        int threads, std::vector<Cell>& cells, const std::vector<size_t>& leaves) {
+// on the valve and the blade with a missing patch, 99.9 to 100 % on the closed scans); empty when
+// not trusted.
+std::optional<detail::ExteriorGrid> trusted_exterior(const Points& pts, double spacing,
+                                                     int threads) {
   constexpr long kTrustProbes = 2000;
   constexpr double kTrustShare = 0.97;
   detail::ExteriorGrid grid = detail::exterior_grid(pts.P, detail::kVoxelSpacings * spacing);
@@ -497,7 +524,14 @@ long negate_by_exterior(const Points& pts, const detail::NeighbourIndex& index, 
   for (Index i = 0; i < probe.X.rows(); ++i)
     agree += (pts.winding(probe.X.row(i).transpose()) > 0.5) == (probe.side[size_t(i)] < 0);
   if (probe.X.rows() == 0 || double(agree) < kTrustShare * double(probe.X.rows()))
-    return 0;
+    return std::nullopt;
+  return grid;
+}
+
+// check_exterior on every leaf. Returns the leaves negated.
+long negate_by_exterior(const Points& pts, const detail::NeighbourIndex& index,
+                        const detail::ExteriorGrid& grid, int threads, std::vector<Cell>& cells,
+                        const std::vector<size_t>& leaves) {
   std::vector<char> negated(leaves.size(), 0);
   detail::parallel_for(long(leaves.size()), detail::resolve_threads(threads), [&](long t, int) {
     negated[size_t(t)] = check_exterior(pts, index, grid, cells[leaves[size_t(t)]].fit);
@@ -546,6 +580,12 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
   if (o.sample_coarse && c.points.rows() >= Index(kSampleStride) * kSamplePoints)
     sample = std::make_unique<const detail::NeighbourIndex>(
         c.points(Eigen::seq(0, Eigen::last, kSampleStride), Eigen::all));
+  const std::optional<detail::ExteriorGrid> exterior =
+      o.exterior_side ? trusted_exterior(pts, info.spacing, o.threads) : std::nullopt;
+  // Noisy scans' leaves are held large by the noise (Rule), and a thin wall's slab then runs on
+  // past its edge; a clean cloud's small leaves do not (the impeller: +1.3 % with the split).
+  const bool noisy = info.scan_noise >= kCleanScanNoise * info.spacing;
+  const detail::ExteriorGrid* split_by = exterior && noisy ? &*exterior : nullptr;
   std::vector<Cell> cells(1);
   size_t begin = 0;
   for (int level = 0; begin < cells.size(); ++level) {
@@ -555,7 +595,7 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
           Cell& c = cells[begin + static_cast<size_t>(t)];
           const Cell* p = c.parent >= 0 ? &cells[size_t(c.parent)] : nullptr;
           process(c, p && p->smooth ? &p->fit : nullptr, pts, index,
-                  !p || p->dense ? sample.get() : nullptr, o, m.origin, m.size, rule);
+                  !p || p->dense ? sample.get() : nullptr, split_by, o, m.origin, m.size, rule);
         });
     for (size_t i = begin; i < end; ++i) {
       if (!cells[i].split)
@@ -585,13 +625,12 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
                          fixed[size_t(t)] = check_sign(pts, index, cells[leaves[size_t(t)]].fit);
                        });
   info.sign_fixed_leaves = std::count(fixed.begin(), fixed.end(), 1);
-  if (o.exterior_side) { // far leaves too: their sides came from the winding number alone
+  if (exterior) { // far leaves too: their sides came from the winding number alone
     std::vector<size_t> all;
     for (size_t i = 0; i < cells.size(); ++i)
       if (cells[i].child < 0)
         all.push_back(i);
-    info.exterior_negated_leaves =
-        negate_by_exterior(pts, index, info.spacing, o.threads, cells, all);
+    info.exterior_negated_leaves = negate_by_exterior(pts, index, *exterior, o.threads, cells, all);
   }
   for (const Cell& cell : cells)
     if (cell.child < 0) {
@@ -611,6 +650,8 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
     m.fits = std::move(sorted);
   }
   info.cells = static_cast<long>(cells.size());
+  info.exterior_split_cells =
+      std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return c.exterior_split; });
   info.sampled_splits =
       std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return c.sampled; });
   info.leaves = static_cast<long>(m.fits.size());

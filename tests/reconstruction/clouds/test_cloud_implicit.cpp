@@ -559,3 +559,58 @@ TEST_CASE("cloud implicit: a clean cloud's fits are held to its scan noise, not 
   REQUIRE(info.scan_noise < 0.002 * info.spacing);
   CHECK(info.rms_distance < 0.03 * info.spacing);
 }
+
+TEST_CASE("cloud implicit: on a noisy scan, cells whose fit contradicts the flood fill in part are "
+          "split; clean clouds are not",
+          "[clouds][implicit]") {
+  // The two faces z = +-0.015 of the plate [-1, 1] x [-0.6, 0.6] (a spacing apart, one band of
+  // the fill's shell), no points on its rim: each face fits as a plane, a cell over the rim joins
+  // them into a slab that runs on past it, and the scan's noise (half a spacing) keeps such cells
+  // large. Probes on the mid-plane z = 0 beyond the rim by 3 spacings + 3 sigma are outside.
+  // Measured: 281 cells split, no leaf negated; F >= 0 at 97 of the 280 probes, 280 without the
+  // fill (the slab reaches every one); bound: fewer than half.
+  const int n = 40000;
+  const double spacing = std::sqrt(2 * 2.0 * 1.2 / n), sigma = 0.5 * spacing;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::normal_distribution<double> G(0, sigma);
+  PointCloud plate{Points3(n, 3), Points3(n, 3)};
+  for (int i = 0; i < n; ++i) {
+    const double side = i % 2 ? 1.0 : -1.0;
+    plate.points.row(i) << U(rng), 0.6 * U(rng), side * 0.015 + G(rng);
+    plate.normals.row(i) << 0, 0, side;
+  }
+  const double d = 3 * spacing + 3 * sigma;
+  Points3 probes(280, 3);
+  for (int i = 0; i < 50; ++i) {
+    const double y = -0.5 + i / 49.0;
+    probes.row(i) << 1 + d, y, 0;
+    probes.row(50 + i) << -1 - d, y, 0;
+  }
+  for (int i = 0; i < 90; ++i) {
+    const double x = -0.9 + 1.8 * i / 89.0;
+    probes.row(100 + i) << x, 0.6 + d, 0;
+    probes.row(190 + i) << x, -0.6 - d, 0;
+  }
+  CloudFitOptions o;
+  CloudFitInfo on, off;
+  const ImplicitFunction F =
+      cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(plate, o, &on)));
+  o.exterior_side = false;
+  const ImplicitFunction H =
+      cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(plate, o, &off)));
+  const long spurious_on = (values(F, probes).array() >= 0).count();
+  const long spurious_off = (values(H, probes).array() >= 0).count();
+  INFO("split " << on.exterior_split_cells << ", negated " << on.exterior_negated_leaves
+                << "; probes F >= 0 with " << spurious_on << ", without " << spurious_off);
+  CHECK(off.exterior_split_cells == 0);
+  CHECK(on.exterior_split_cells > 0);
+  CHECK(on.exterior_negated_leaves == 0); // the split alone
+  CHECK(spurious_off == probes.rows());
+  CHECK(2 * spurious_on < spurious_off);
+  // A clean cloud (scan noise below kCleanScanNoise spacings) is never split on the fill.
+  CloudFitInfo clean;
+  fit_cloud_implicit(test::sample_shape({test::Shape::ellipsoid, 1, 0.05}, 12000, 0, 25), {},
+                     &clean);
+  CHECK(clean.exterior_split_cells == 0);
+}

@@ -97,7 +97,8 @@ struct CloudFitOptions {
   // every cell from all its points.
   bool sample_coarse = true;
   // After fitting, leaves whose sign contradicts the flood fill's inside and outside are negated
-  // (fit_cloud_implicit; info.exterior_negated_leaves). False: the fits as they come.
+  // (fit_cloud_implicit; info.exterior_negated_leaves), and on noisy scans cells whose fit
+  // contradicts it in part are split (info.exterior_split_cells). False: the fits as they come.
   bool exterior_side = true;
   // Noisy scans (scan noise, given or estimate_scan_noise, at least kCleanScanNoise spacings):
   // the points are first moved onto local quadrics of up to 512 neighbours, each point's number
@@ -115,6 +116,7 @@ struct CloudFitInfo {
   long cells = 0, leaves = 0, two_sheet_leaves = 0, far_leaves = 0;
   long sign_fixed_leaves = 0;       // leaves whose fit had the wrong side: given the far plane
   long exterior_negated_leaves = 0; // leaves negated to the flood fill's side (exterior_side)
+  long exterior_split_cells = 0;    // cells split where their fit contradicted the flood fill
   long sampled_splits = 0;          // cells split on every 16th point alone (their fit far off)
   int depth = 0;                    // deepest level reached
   double rms_distance = 0;          // over the input points: |F| / |grad F| (first-order distance)
@@ -163,7 +165,10 @@ struct CloudFitInfo {
 // 97 % of the free voxels next to the shell (the shell closes the cloud), a leaf whose Q has the
 // wrong sign at 90 % (and at least 8) of the labelled points of a 9^3 lattice over its support
 // ball is negated (info.exterior_negated_leaves): its normals were wrong where neither the
-// orientation nor the winding number can tell, as at a blade's thin edges.
+// orientation nor the winding number can tell, as at a blade's thin edges. On a noisy scan the
+// grid is built first, and a cell whose fit has the wrong sign at 8 (and fewer than 90 %) of
+// those lattice points is split (info.exterior_split_cells): a thin wall's two sheets joined into
+// a slab that runs on past the wall's edge.
 // Before fitting, the normals' orientation is checked by the divergence theorem (sum of a_i n_i .
 // (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per point): inward normals
 // are flipped and info.flipped is set. Throws std::invalid_argument for a cloud without normals,
