@@ -165,10 +165,10 @@ struct CloudFitInfo {
 // 97 % of the free voxels next to the shell (the shell closes the cloud), a leaf whose Q has the
 // wrong sign at 90 % (and at least 8) of the labelled points of a 9^3 lattice over its support
 // ball is negated (info.exterior_negated_leaves): its normals were wrong where neither the
-// orientation nor the winding number can tell, as at a blade's thin edges. On a noisy scan the
-// grid is built first, and a cell whose fit has the wrong sign at 8 (and fewer than 90 %) of
-// those lattice points is split (info.exterior_split_cells): a thin wall's two sheets joined into
-// a slab that runs on past the wall's edge.
+// orientation nor the winding number can tell, as at a blade's thin edges. The grid is built
+// before the octree, and on a noisy scan a cell whose fit has the wrong sign at 8 (and fewer
+// than 90 %) of those lattice points is split (info.exterior_split_cells): a thin wall's two
+// sheets joined into a slab that runs on past the wall's edge.
 // Before fitting, the normals' orientation is checked by the divergence theorem (sum of a_i n_i .
 // (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per point): inward normals
 // are flipped and info.flipped is set. Throws std::invalid_argument for a cloud without normals,
