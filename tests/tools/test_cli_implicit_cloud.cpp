@@ -73,6 +73,17 @@ void write_cloud(const std::string& path, const interlin::PointCloud& c) {
   write_file(path, s);
 }
 
+// clean.xyz and noisy.xyz (sigma 0.01): n points of the unit sphere in a new directory d, and
+// the output options o (" -o d/x.ifl -q").
+struct SphereScans {
+  TempDir d;
+  std::string o;
+  SphereScans(const std::string& tag, int n, unsigned seed) : d(tag), o(" -o " + d / "x.ifl -q") {
+    write_cloud(d / "clean.xyz", sample_shape({Shape::sphere}, n, 0, seed));
+    write_cloud(d / "noisy.xyz", sample_shape({Shape::sphere}, n, 0.01, seed));
+  }
+};
+
 } // namespace
 
 TEST_CASE("CLI implicit: unstructured clouds -> .ifl through the points, signed, meshed",
@@ -116,10 +127,9 @@ TEST_CASE("CLI implicit: unstructured clouds -> .ifl through the points, signed,
 
 TEST_CASE("CLI implicit: sheet normals on clean clouds by default, --sheet-normals off|on",
           "[cli][implicit][clouds]") {
-  TempDir d("implicitsheets");
-  write_cloud(d / "clean.xyz", sample_shape({Shape::sphere}, 2000, 0, 45));
-  write_cloud(d / "noisy.xyz", sample_shape({Shape::sphere}, 2000, 0.01, 45));
-  const std::string o = " -o " + d / "x.ifl -q";
+  const SphereScans scans("implicitsheets", 2000, 45);
+  const TempDir& d = scans.d;
+  const std::string& o = scans.o;
   const std::string kept = "; kept to one sheet, ";
   Run r = run("implicit " + d / "clean.xyz" + o);
   REQUIRE(r.status == 0);
@@ -138,10 +148,9 @@ TEST_CASE("CLI implicit: sheet normals on clean clouds by default, --sheet-norma
 
 TEST_CASE("CLI implicit: noisy scans' points smoothed by default, --smooth-points off",
           "[cli][implicit][clouds]") {
-  TempDir d("implicitsmooth");
-  write_cloud(d / "clean.xyz", sample_shape({Shape::sphere}, 3000, 0, 46));
-  write_cloud(d / "noisy.xyz", sample_shape({Shape::sphere}, 3000, 0.01, 46));
-  const std::string o = " -o " + d / "x.ifl -q";
+  const SphereScans scans("implicitsmooth", 3000, 46);
+  const TempDir& d = scans.d;
+  const std::string& o = scans.o;
   const std::string smoothed = "  smoothing    3000 points moved onto local quadrics (median ";
   Run r = run("implicit " + d / "noisy.xyz" + o);
   REQUIRE(r.status == 0);
