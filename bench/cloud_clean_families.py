@@ -98,10 +98,17 @@ def measure(shape, n, rho, variants=({"min_points": 20}, {}), threads=2):
     return row
 
 
-def main(argv):
+def family(argv, rhos):
+    """SHAPES COUNTS RHOS from the command line (comma-separated), defaulting to the four
+    shapes, 3000,12000,50000 points and `rhos`."""
     shapes = (argv[0] if argv else "sphere,torus,cylinder,ellipsoid").split(",")
     counts = [int(x) for x in (argv[1] if len(argv) > 1 else "3000,12000,50000").split(",")]
-    rhos = [float(x) for x in (argv[2] if len(argv) > 2 else "0,0.001,0.0015").split(",")]
+    rhos = [float(x) for x in (argv[2] if len(argv) > 2 else rhos).split(",")]
+    return shapes, counts, rhos
+
+
+def main(argv):
+    shapes, counts, rhos = family(argv, "0,0.001,0.0015")
     print("| shape | points | rho (estimated) | 20 points: Chamfer, H | automatic: points, "
           "Chamfer, H | ratio |")
     print("|---|---|---|---|---|---|")

@@ -17,13 +17,11 @@ import sys
 
 import numpy as np
 
-from cloud_clean_families import measure
+from cloud_clean_families import family, measure
 
 
 def main(argv):
-    shapes = (argv[0] if argv else "sphere,torus,cylinder,ellipsoid").split(",")
-    counts = [int(x) for x in (argv[1] if len(argv) > 1 else "3000,12000,50000").split(",")]
-    rhos = [float(x) for x in (argv[2] if len(argv) > 2 else "0.1,0.3,0.6").split(",")]
+    shapes, counts, rhos = family(argv, "0.1,0.3,0.6")
     print("| shape | points | rho | as they come: Chamfer, H | smoothed: median k, Chamfer, H | "
           "ratio |")
     print("|---|---|---|---|---|---|")

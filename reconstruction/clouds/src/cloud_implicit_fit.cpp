@@ -4,6 +4,7 @@
 
 #include "exterior_side.h"
 #include "local_fit.h"
+#include "morton_key.h"
 #include "nearest_neighbours.h"
 #include "winding_number.h"
 
@@ -35,9 +36,7 @@ namespace {
 constexpr double kAcceptRms = 1.5, kAcceptMax = 4.0;
 // Floor of sigma relative to the root cube: noise-free input still stops refining at round-off.
 constexpr double kSigmaFloor = 1e-6;
-// One sheet when the normals of (nearly) all points lie within 60 degrees of their mean: a
-// quadratic height function then has slopes up to tan 60 = 1.7.
-const double kSheetCos = 0.5;
+using detail::kSheetCos; // one sheet: (nearly) all normals within 60 degrees of their mean
 constexpr double kStrayWeight = 0.05; // weight fraction of normals outside the cone tolerated
 // Curvature coefficients are damped by this ridge (in coordinates scaled by the ball radius) so
 // that points along one line (a single scan line through a cell) give a cylinder, not garbage.
@@ -291,13 +290,19 @@ void negate(LocalFit& f) {
 
 // The lattice points of f's support ball (kExteriorLattice^3 in its cube) that the flood fill
 // labels, by side, and those where Q's sign agrees or disagrees with the label.
-struct ExteriorVotes {
-  int agree = 0, disagree = 0, inside = 0, outside = 0;
-};
 // measured 5, 7, 9, 11 lattice points per axis, at least 4, 8, 16 of them, shares 0.6 to 0.9
 // on the blades, the UAV, the car and the impeller (docs/benchmarks.md): 9, 8, 0.9 best
 constexpr int kExteriorLattice = 9, kExteriorLeast = 8;
 constexpr double kExteriorShare = 0.9;
+struct ExteriorVotes {
+  int agree = 0, disagree = 0, inside = 0, outside = 0;
+  // Q has the wrong sign at kExteriorLeast of the points or more, and at kExteriorShare of the
+  // labelled ones (check_exterior negates it) or not (contradicts_exterior)
+  bool some_wrong() const { return disagree >= kExteriorLeast; }
+  bool mostly_wrong() const {
+    return some_wrong() && disagree >= kExteriorShare * (agree + disagree);
+  }
+};
 
 ExteriorVotes exterior_votes(const detail::ExteriorGrid& g, const LocalFit& f) {
   ExteriorVotes v;
@@ -332,7 +337,7 @@ ExteriorVotes exterior_votes(const detail::ExteriorGrid& g, const LocalFit& f) {
 bool check_exterior(const Points& pts, const detail::NeighbourIndex& index,
                     const detail::ExteriorGrid& g, LocalFit& f) {
   const ExteriorVotes v = exterior_votes(g, f);
-  if ((v.inside == 0 || v.outside == 0) && v.disagree >= kExteriorLeast) {
+  if ((v.inside == 0 || v.outside == 0) && v.some_wrong()) {
     std::vector<int> idx;
     std::vector<double> d2;
     index.knn(f.centre, 1, idx, d2);
@@ -341,7 +346,7 @@ bool check_exterior(const Points& pts, const detail::NeighbourIndex& index,
       return true;
     }
   }
-  if (v.disagree < kExteriorLeast || v.disagree < kExteriorShare * (v.agree + v.disagree))
+  if (!v.mostly_wrong())
     return false;
   negate(f);
   return true;
@@ -353,7 +358,7 @@ bool check_exterior(const Points& pts, const detail::NeighbourIndex& index,
 // too few points to be split for its misfit (docs/benchmarks.md "Slabs past thin edges").
 bool contradicts_exterior(const detail::ExteriorGrid& g, const LocalFit& f) {
   const ExteriorVotes v = exterior_votes(g, f);
-  return v.disagree >= kExteriorLeast && v.disagree < kExteriorShare * (v.agree + v.disagree);
+  return v.some_wrong() && !v.mostly_wrong();
 }
 
 // What decides a cell: the points per fit and the acceptance thresholds (kAcceptRms sigma,
@@ -497,13 +502,10 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
 // Z-order (Morton) key of a leaf's cell at the resolution of level `depth` (<= 21): leaves sorted
 // by it lie near their neighbours in memory, which the evaluator's loops over nearby balls like.
 std::uint64_t morton(const LocalFit& f, int depth) {
-  std::uint64_t key = 0;
-  for (int a = 0; a < 3; ++a) {
-    const std::uint64_t v = std::uint64_t(f.cell(a)) << (depth - f.level);
-    for (int b = 0; b < depth; ++b)
-      key |= ((v >> b) & 1u) << (3 * b + a);
-  }
-  return key;
+  const int shift = depth - f.level;
+  return detail::morton_key({std::uint64_t(f.cell(0)) << shift, std::uint64_t(f.cell(1)) << shift,
+                             std::uint64_t(f.cell(2)) << shift},
+                            depth);
 }
 
 // The flood fill's grid (exterior_side.h) at kVoxelSpacings point spacings, trusted when the
@@ -569,7 +571,8 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
   // On a clean cloud estimate_noise's residual is shape, not noise (the impeller's 0.4-thick
   // blades, 2 spacings, in most quadrics' 24 points: 0.28 spacings): its fits are accepted by
   // the scan noise (docs/benchmarks.md "The impeller: clean clouds' fits held to the scan noise").
-  const bool clean = info.noise_estimated && info.scan_noise < kCleanScanNoise * info.spacing;
+  const bool clean_scan = info.scan_noise < kCleanScanNoise * info.spacing;
+  const bool clean = info.noise_estimated && clean_scan;
   const double fit_sigma = clean ? std::max(info.scan_noise, kSigmaFloor * m.size) : sigma;
   Rule rule = fit_rule(o, fit_sigma, info.scan_noise / info.spacing, c.points.rows());
   rule.gap_misfit = kGapMisfit * info.spacing;
@@ -584,8 +587,7 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
       o.exterior_side ? trusted_exterior(pts, info.spacing, o.threads) : std::nullopt;
   // Noisy scans' leaves are held large by the noise (Rule), and a thin wall's slab then runs on
   // past its edge; a clean cloud's small leaves do not (the impeller: +1.3 % with the split).
-  const bool noisy = info.scan_noise >= kCleanScanNoise * info.spacing;
-  const detail::ExteriorGrid* split_by = exterior && noisy ? &*exterior : nullptr;
+  const detail::ExteriorGrid* split_by = exterior && !clean_scan ? &*exterior : nullptr;
   std::vector<Cell> cells(1);
   size_t begin = 0;
   for (int level = 0; begin < cells.size(); ++level) {

@@ -11,6 +11,11 @@
 
 namespace interlin::detail {
 
+// Normals within 60 degrees of each other lie on one sheet: a quadratic height function over
+// the tangent plane then has slopes up to tan 60 = 1.7 (the fit's one-sheet test; the smoothing's
+// neighbours; the other side of a thin wall is not the same sheet).
+inline constexpr double kSheetCos = 0.5;
+
 // The rows t1, t2, n of an orthonormal frame whose third axis is the unit vector n.
 inline Eigen::Matrix3d tangent_frame(const Eigen::Vector3d& n) {
   const Eigen::Vector3d a =

@@ -2,7 +2,9 @@
 // (smooth_scan_points.h).
 #include "interlin/reconstruction/clouds/smooth_scan_points.h"
 
+#include "height_quadric.h"
 #include "local_fit.h"
+#include "morton_key.h"
 #include "nearest_neighbours.h"
 
 #include "interlin/reconstruction/meshing/parallel_for.h"
@@ -27,7 +29,7 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 constexpr int kFirstRung = 16;           // the smallest neighbourhood: 16, 32, ..., k_max
 constexpr int kLeastOnSheet = 12;        // twice the quadric's 6 coefficients
-const double kSheetCos = 0.5;            // neighbours within 60 degrees of the point's normal
+using detail::kSheetCos;                 // neighbours within 60 degrees of the point's normal
 constexpr double kCurvatureRidge = 1e-9; // keeps one scan line's quadric solvable (scaled units)
 
 // A rung's quadric: w = h(u, v) in the frame (rows t1, t2, n) at origin, coordinates divided by
@@ -45,7 +47,7 @@ struct Rung {
 void project(const Rung& r, const Vector3d& x, Vector3d& y, Vector3d& normal) {
   const Vector3d l = r.frame * (x - r.origin) / r.s;
   const double u = l(0), v = l(1);
-  const Eigen::Matrix<double, 1, 6> phi{u * u, u * v, v * v, u, v, 1};
+  const Eigen::Matrix<double, 1, 6> phi = detail::HeightQuadric::basis(u, v);
   const double hu = 2 * r.c(0) * u + r.c(1) * v + r.c(3), hv = r.c(1) * u + 2 * r.c(2) * v + r.c(4);
   y = r.origin + r.s * r.frame.transpose() * Vector3d(u, v, phi * r.c);
   normal = (r.frame.transpose() * Vector3d(-hu, -hv, 1)).normalized();
@@ -107,13 +109,9 @@ std::vector<Index> z_order(const Eigen::MatrixX3d& P) {
   const double scale = extent > 0 ? double((1u << 20) - 1) / extent : 0;
   std::vector<std::pair<std::uint64_t, Index>> key(size_t(P.rows()));
   for (Index i = 0; i < P.rows(); ++i) {
-    std::uint64_t k = 0;
-    for (int a = 0; a < 3; ++a) {
-      const auto v = std::uint64_t((P(i, a) - lo(a)) * scale);
-      for (int b = 0; b < 20; ++b)
-        k |= ((v >> b) & 1u) << (3 * b + a);
-    }
-    key[size_t(i)] = {k, i};
+    const Vector3d v = (P.row(i).transpose() - lo) * scale;
+    key[size_t(i)] = {
+        detail::morton_key({std::uint64_t(v(0)), std::uint64_t(v(1)), std::uint64_t(v(2))}, 20), i};
   }
   std::sort(key.begin(), key.end());
   std::vector<Index> order(key.size());
@@ -143,8 +141,7 @@ bool smooth_point(const PointRows& X, Index i, const detail::NeighbourIndex& ind
     const auto q = X.row(idx[j]);
     if (q.tail<3>().dot(n.transpose()) >= kSheetCos) {
       const Vector3d l = r.frame * (q.head<3>().transpose() - r.origin) / r.s;
-      Vector6d phi;
-      phi << l(0) * l(0), l(0) * l(1), l(1) * l(1), l(0), l(1), 1;
+      const Vector6d phi = detail::HeightQuadric::basis(l(0), l(1)).transpose();
       A.selfadjointView<Eigen::Lower>().rankUpdate(phi);
       b += phi * l(2);
       ++on_sheet;
@@ -205,18 +202,18 @@ SmoothedPoints smooth_scan_points(const Eigen::MatrixX3d& P, const Eigen::Matrix
     std::vector<int> idx;
     std::vector<double> d2;
     anchor_index.knn(x, kAnchorChoice, idx, d2);
+    const auto on_sheet = [&](size_t m) {
+      return X.row(idx[m] * kAnchorStride).tail<3>().dot(X.row(j).tail<3>()) >= kSheetCos;
+    };
     size_t m = 0; // the nearest anchor on the same sheet (a thin wall's other side is near too)
-    while (m + 1 < idx.size() &&
-           X.row(idx[m] * kAnchorStride).tail<3>().dot(X.row(j).tail<3>()) < kSheetCos)
+    while (m + 1 < idx.size() && !on_sheet(m))
       ++m;
     const size_t a = size_t(idx[m]);
     Rung own;
     const Rung* r = &quadric[a];
     int k = anchor_k[a];
-    if (j % kAnchorStride != 0 &&
-        (k < kAnchorRung ||
-         X.row(idx[m] * kAnchorStride).tail<3>().dot(X.row(j).tail<3>()) < kSheetCos ||
-         kAnchorReach * kAnchorReach * d2[m] > r->reach * r->reach)) {
+    if (j % kAnchorStride != 0 && (k < kAnchorRung || !on_sheet(m) ||
+                                   kAnchorReach * kAnchorReach * d2[m] > r->reach * r->reach)) {
       r = &own;
       if (!smooth_point(X, j, index, sigma, k_max, kappa, own, k))
         k = 0;

@@ -41,6 +41,26 @@ Eigen::VectorXd values(const ImplicitFunction& F, const Eigen::MatrixX3d& P) {
   return v;
 }
 
+// The cloud fitted with the default options, with the flood fill (exterior_side) and without
+// it: each fit's info and the number of probes (outside the body) where its F >= 0.
+struct WithAndWithoutFill {
+  CloudFitInfo on, off;
+  long spurious_on = 0, spurious_off = 0;
+};
+
+WithAndWithoutFill fit_with_and_without_fill(const PointCloud& c, const Points3& probes) {
+  WithAndWithoutFill r;
+  CloudFitOptions o;
+  const ImplicitFunction F =
+      cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(c, o, &r.on)));
+  o.exterior_side = false;
+  const ImplicitFunction G =
+      cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(c, o, &r.off)));
+  r.spurious_on = (values(F, probes).array() >= 0).count();
+  r.spurious_off = (values(G, probes).array() >= 0).count();
+  return r;
+}
+
 } // namespace
 
 TEST_CASE("cloud implicit: zero set within the noise of sphere, torus and thin ellipsoid",
@@ -434,17 +454,8 @@ TEST_CASE("cloud implicit: leaves of wrong normals at a thin rim are negated to 
       if (x * x + y * y / 0.36 > r * r)
         c.normals.row(i) *= -1, ++flipped;
     }
-    CloudFitOptions o;
-    o.noise = 0;
-    CloudFitInfo on, off;
-    const ImplicitFunction F =
-        cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(c, o, &on)));
-    o.exterior_side = false;
-    const ImplicitFunction G =
-        cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(c, o, &off)));
-    const Points3 probes = clean.points + t * clean.normals;
-    const long spurious_on = (values(F, probes).array() >= 0).count();
-    const long spurious_off = (values(G, probes).array() >= 0).count();
+    const auto [on, off, spurious_on, spurious_off] =
+        fit_with_and_without_fill(c, clean.points + t * clean.normals);
     INFO("band " << r << ": " << flipped << " normals flipped, " << on.exterior_negated_leaves
                  << " leaves negated; probes F >= 0 with " << spurious_on << ", without "
                  << spurious_off);
@@ -592,15 +603,7 @@ TEST_CASE("cloud implicit: on a noisy scan, cells whose fit contradicts the floo
     probes.row(100 + i) << x, 0.6 + d, 0;
     probes.row(190 + i) << x, -0.6 - d, 0;
   }
-  CloudFitOptions o;
-  CloudFitInfo on, off;
-  const ImplicitFunction F =
-      cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(plate, o, &on)));
-  o.exterior_side = false;
-  const ImplicitFunction H =
-      cloud_implicit_function(std::make_shared<CloudImplicit>(fit_cloud_implicit(plate, o, &off)));
-  const long spurious_on = (values(F, probes).array() >= 0).count();
-  const long spurious_off = (values(H, probes).array() >= 0).count();
+  const auto [on, off, spurious_on, spurious_off] = fit_with_and_without_fill(plate, probes);
   INFO("split " << on.exterior_split_cells << ", negated " << on.exterior_negated_leaves
                 << "; probes F >= 0 with " << spurious_on << ", without " << spurious_off);
   CHECK(off.exterior_split_cells == 0);
