@@ -139,7 +139,7 @@ TEST_CASE("ifl: damaged files give one line naming file and line", "[ifl]") {
     CHECK(error_of(good.substr(0, n)).rfind("bad.ifl:", 0) == 0);
 }
 
-TEST_CASE("ifl: kinds come from the registry; unknown kinds are named", "[ifl]") {
+TEST_CASE("ifl: kinds come from the registry, unknown kinds are named", "[ifl]") {
   const std::vector<std::string> kinds = ifl_kinds();
   CHECK(std::count(kinds.begin(), kinds.end(), "section_body") == 1);
   CHECK(std::count(kinds.begin(), kinds.end(), "normalized_rf") == 1);

@@ -53,7 +53,9 @@ TEST_CASE("T14: box interflatation, exact on the faces, digest values", "[operat
   for (int k = 0; k < 50; ++k) {
     const Vector3d p(U(rng), U(rng), U(rng));
     const double err = cube(p) - box_interflatation(cube, lo, hi, p);
-    CHECK(err == Approx(-p(0) * (1 - p(0)) * p(1) * (1 - p(1)) * p(2) * (1 - p(2))).epsilon(0).margin(1e-15));
+    CHECK(err == Approx(-p(0) * (1 - p(0)) * p(1) * (1 - p(1)) * p(2) * (1 - p(2)))
+                     .epsilon(0)
+                     .margin(1e-15));
   }
   const auto f = [](const Vector3d& p) {
     return std::sin(p(0) + 2 * p(1)) * std::exp(p(2)) + p(0) * p(1) * p(2);
@@ -274,7 +276,7 @@ TEST_CASE("T19: Ou = 0 on dG for random free traces (implicit, polygon, B-spline
     }
 }
 
-TEST_CASE("Theorem 4: exact on grid lines and continuous for traces zero on dG; cell kinds",
+TEST_CASE("Theorem 4: exact on grid lines and continuous for traces zero on dG, cell kinds",
           "[operators][theorem4]") {
   // Ellipse, traces from an R-function-like target that vanishes on dG: Ou = u on every grid
   // line, and Ou has no jumps across cell sides.

@@ -66,7 +66,7 @@ TEST_CASE("Cyclic folding functions: digest 000 T16", "[rf][folding]") {
         Approx(0.1243057).epsilon(0).margin(kPrinted));
 }
 
-TEST_CASE("Translational folding repeats the copy; the asymmetric form does not mirror it",
+TEST_CASE("Translational folding repeats the copy, the asymmetric form does not mirror it",
           "[rf][folding]") {
   // A disk of radius 0.4 at the origin repeated with period h = 2 (Theorem 1).
   const Expr disk = circle(X, Y, 0.4);
@@ -110,7 +110,8 @@ TEST_CASE("Cyclic folding: n rotated copies (Theorems 4 and 5)", "[rf][folding]"
     const Eigen::Rotation2Dd R(2 * pi * k / n);
     for (int i = 0; i < 30; ++i) {
       const Eigen::Vector2d p(2 + u(rng), u(rng) * 0.8), q = R * p;
-      CHECK(value_at(fs, q.x(), q.y()) == Approx(value_at(s0, p.x(), p.y())).epsilon(0).margin(1e-12));
+      CHECK(value_at(fs, q.x(), q.y()) ==
+            Approx(value_at(s0, p.x(), p.y())).epsilon(0).margin(1e-12));
       const double original = value_at(a0, p.x(), p.y());
       if (std::abs(original) > 1e-9)
         CHECK((value_at(fa, q.x(), q.y()) > 0) == (original > 0));
@@ -155,7 +156,8 @@ TEST_CASE("Translation, rotation and scaling move the body", "[rf][transforms]")
     CHECK(at(ry, Ry * p) == Approx(v).epsilon(0).margin(1e-13));
     CHECK(at(rz, Rz * p) == Approx(v).epsilon(0).margin(1e-13));
     CHECK(at(ra, Ra * p) == Approx(v).epsilon(0).margin(1e-13));
-    CHECK(at(sc, s * p) == Approx(s * v).epsilon(0).margin(1e-13)); // s F(x/s): distances scale by s
+    CHECK(at(sc, s * p) ==
+          Approx(s * v).epsilon(0).margin(1e-13)); // s F(x/s): distances scale by s
     // a normalised body stays normalised: equal gradient lengths at corresponding points
     const Eigen::Vector3d q = s * p;
     CHECK(gradient_at(sc, q.x(), q.y(), q.z()).norm() ==
@@ -199,8 +201,10 @@ TEST_CASE("Revolution (2.46), smooth revolution (2.47), similar sections, cone, 
   const double h = 1e-6;
   const ImplicitFunction plain = test::compiled(revolve_x(slab)),
                          smooth = test::compiled(revolve_x_smooth(slab));
-  CHECK((value_at(plain, 0.2, 0, h) - value_at(plain, 0.2, 0, 0)) / h == Approx(-2).epsilon(0).margin(1e-6));
-  CHECK((value_at(smooth, 0.2, 0, h) - value_at(smooth, 0.2, 0, 0)) / h == Approx(0).epsilon(0).margin(1e-4));
+  CHECK((value_at(plain, 0.2, 0, h) - value_at(plain, 0.2, 0, 0)) / h ==
+        Approx(-2).epsilon(0).margin(1e-6));
+  CHECK((value_at(smooth, 0.2, 0, h) - value_at(smooth, 0.2, 0, 0)) / h ==
+        Approx(0).epsilon(0).margin(1e-4));
   CHECK(gradient_at(smooth, 0.2, 0, 0).tail<2>().norm() == Approx(0).epsilon(0).margin(1e-12));
   // similar sections: radius 1/k(z) with k = 1 + z
   const ImplicitFunction sim = test::compiled(similar_z(circle(X, Y, 1.0), 1 + Z));
@@ -239,7 +243,8 @@ TEST_CASE("Blended fuselage on a segment frame: digest 000 T17", "[rf][frame]") 
     }
     CHECK(lo == Approx(rs[i]).epsilon(0).margin(kPrinted));
     // radially symmetric about the x axis
-    CHECK(value_at(wp, xs[i], lo * std::cos(1.1), lo * std::sin(1.1)) == Approx(0).epsilon(0).margin(1e-12));
+    CHECK(value_at(wp, xs[i], lo * std::cos(1.1), lo * std::sin(1.1)) ==
+          Approx(0).epsilon(0).margin(1e-12));
   }
 }
 
@@ -251,7 +256,8 @@ TEST_CASE("Arc frame (reconstruction of seed 000 §2.9's arc): zero exactly on t
     CHECK(value_at(f, R * std::cos(t), R * std::sin(t)) == Approx(0).epsilon(0).margin(1e-12));
     // normal to the arc inside its span: |R - r| (the wedge selector is large there)
     if (std::abs(t) < 0.3)
-      CHECK(value_at(f, 2.1 * std::cos(t), 2.1 * std::sin(t)) == Approx(0.1).epsilon(0).margin(1e-3));
+      CHECK(value_at(f, 2.1 * std::cos(t), 2.1 * std::sin(t)) ==
+            Approx(0.1).epsilon(0).margin(1e-3));
   }
   // the circle beyond the arc's ends is not part of the frame
   for (double t : {0.8, 1.5, -1.0, 3.0})

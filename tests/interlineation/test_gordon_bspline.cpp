@@ -183,7 +183,7 @@ TEST_CASE("Open network: quadratic cardinal blending across, elevated to the sec
                     Catch::Contains("both ends"));
 }
 
-TEST_CASE("Gordon B-spline surface: no guides is the section loft; mismatches are rejected",
+TEST_CASE("Gordon B-spline surface: no guides is the section loft, mismatches are rejected",
           "[gordon_bspline]") {
   const Network n = network(4, Eigen::Vector2d(0.0, 0.5), 3);
   const BSplineSurface A = gordon_bspline(n.sections, n.v, {}, VectorXd(0), 3, true);

@@ -47,7 +47,7 @@ RowVectorXd t11(double x, double y, int dx, int dy) {
 
 } // namespace
 
-TEST_CASE("T11: bilinear Coons reproduces the four sides; interior value", "[gordon][T11]") {
+TEST_CASE("T11: bilinear Coons reproduces the four sides, interior value", "[gordon][T11]") {
   const VectorXd x = Eigen::Vector2d(0.2, 1.1), y = Eigen::Vector2d(-0.3, 0.7);
   const GordonSurface O = coons_bilinear(traces_of(t11, x, y));
   double side = 0;

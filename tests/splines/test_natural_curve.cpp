@@ -61,7 +61,7 @@ QuadratureOptions book() {
 
 } // namespace
 
-TEST_CASE("Clothoid k = s: adaptive quadrature equals the Fresnel series; trapezoid-2000 the book",
+TEST_CASE("Clothoid k = s: adaptive quadrature equals the Fresnel series, trapezoid-2000 the book",
           "[splines][natural]") {
   const PlanarNaturalCurve c = curve(polynomial_law(Eigen::Vector2d(0, 1)), 1.0);
   const Vector2d exact = fresnel_series(1.0);
@@ -105,9 +105,10 @@ TEST_CASE("Polynomial curvature laws of degree 0..5: closed-form angle and quadr
     integral *= 2.0 / n / 3;
     CHECK(tangent_angle(c, 2.0) - c.phi0 == Approx(integral).epsilon(0).margin(1e-11));
     // k' by the closed form against a central difference (h = 1e-5: error ~1e-10 * k''').
-    CHECK(
-        curvature(c.law, 1.3, 1) ==
-        Approx((curvature(c.law, 1.3 + 1e-5) - curvature(c.law, 1.3 - 1e-5)) / 2e-5).epsilon(0).margin(1e-7));
+    CHECK(curvature(c.law, 1.3, 1) ==
+          Approx((curvature(c.law, 1.3 + 1e-5) - curvature(c.law, 1.3 - 1e-5)) / 2e-5)
+              .epsilon(0)
+              .margin(1e-7));
     // Position: adaptive Gauss–Legendre vs composite Simpson with 20000 panels (error ~1e-14).
     CHECK((natural_point(c, 2.0) - simpson_point(c, 2.0, 20000)).norm() < 1e-12);
   }
@@ -126,18 +127,22 @@ TEST_CASE("Sine laws: closed-form angles (1.5), (1.6) and the closure of §1.4",
   // (1.5): phi = phi0 + c s - (a/b)(cos bs - 1).
   const CurvatureLaw k15 = sine_law(1.3, 3.0, 0.7);
   for (double s : {0.2, 1.1, 4.0})
-    CHECK(turning(k15, s) == Approx(0.7 * s - 1.3 / 3.0 * (std::cos(3.0 * s) - 1)).epsilon(0).margin(1e-14));
+    CHECK(turning(k15, s) ==
+          Approx(0.7 * s - 1.3 / 3.0 * (std::cos(3.0 * s) - 1)).epsilon(0).margin(1e-14));
   // (1.6): phi = phi0 + s + A(s/2 - sin(2bs)/(4b)).
   const CurvatureLaw k16 = sine_squared_law(0.8, 1.7);
   for (double s : {0.2, 1.1, 4.0}) {
-    CHECK(curvature(k16, s) == Approx(0.8 * std::pow(std::sin(1.7 * s), 2) + 1).epsilon(0).margin(1e-14));
-    CHECK(turning(k16, s) == Approx(s + 0.8 * (s / 2 - std::sin(3.4 * s) / 6.8)).epsilon(0).margin(1e-14));
+    CHECK(curvature(k16, s) ==
+          Approx(0.8 * std::pow(std::sin(1.7 * s), 2) + 1).epsilon(0).margin(1e-14));
+    CHECK(turning(k16, s) ==
+          Approx(s + 0.8 * (s / 2 - std::sin(3.4 * s) / 6.8)).epsilon(0).margin(1e-14));
   }
   // Third law: phi = phi0 + s + A(s/2 - sin 2s/4) + (1 - cos s).
   const CurvatureLaw k3 = sine_squared_sine_law(2.5);
   for (double s : {0.2, 1.1, 4.0})
-    CHECK(turning(k3, s) ==
-          Approx(s + 2.5 * (s / 2 - std::sin(2 * s) / 4) + 1 - std::cos(s)).epsilon(0).margin(1e-14));
+    CHECK(
+        turning(k3, s) ==
+        Approx(s + 2.5 * (s / 2 - std::sin(2 * s) / 4) + 1 - std::cos(s)).epsilon(0).margin(1e-14));
 
   // Closure (digest §3.1 [V]): net turn per period pi is pi (1 + A/2); the book's figures are
   // closed except A = 2 (an open chain). Values at round-off are closed curves.

@@ -120,7 +120,7 @@ TEST_CASE("smooth_scan_points: the two sides of a thin wall stay apart", "[cloud
   CHECK(std::sqrt(bottom_z.square().mean()) < 0.5 * sigma);
 }
 
-TEST_CASE("smooth_scan_points: a noisy sphere comes closer to the truth; bad inputs throw",
+TEST_CASE("smooth_scan_points: a noisy sphere comes closer to the truth, bad inputs throw",
           "[clouds][smooth]") {
   const test::SampledShape sphere{test::Shape::sphere};
   const double sigma = 0.005; // 0.28 spacings of 50,000 points on the unit sphere

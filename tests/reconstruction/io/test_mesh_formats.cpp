@@ -66,7 +66,7 @@ std::string error_of(const std::string& text, const std::string& name) {
 
 } // namespace
 
-TEST_CASE("PLY and OBJ round trip doubles bit for bit; float precision rounds to float",
+TEST_CASE("PLY and OBJ round trip doubles bit for bit, float precision rounds to float",
           "[mesh][precision]") {
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;

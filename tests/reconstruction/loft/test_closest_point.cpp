@@ -62,7 +62,7 @@ TEST_CASE("Projection: feet are orthogonal, no dense-sample point is closer", "[
   }
 }
 
-TEST_CASE("Projection: points on the surface have distance zero; plane distance exact",
+TEST_CASE("Projection: points on the surface have distance zero, plane distance exact",
           "[closest]") {
   BSplineSurface plane;
   plane.degree_u = plane.degree_v = 1;

@@ -68,7 +68,7 @@ double max_error(const CylindricalLoft& m) {
 
 } // namespace
 
-TEST_CASE("Cylindrical model reproduces every section point; O(h^4) along z", "[cylindrical]") {
+TEST_CASE("Cylindrical model reproduces every section point, O(h^4) along z", "[cylindrical]") {
   const CylindricalLoft m = cylindrical_loft(star(5, 200), GuideSet{}, centred());
   CHECK(m.max_deviation <= 1e-13 * m.bbox_diagonal); // sections are exactly planar here
   CHECK(m.z.size() == 5);

@@ -254,7 +254,7 @@ TEST_CASE("Leave-one-out on dense sections: at most 256 points of each withheld 
   CHECK(m.used.loo_max >= 0.99 * max);
 }
 
-TEST_CASE("Ties: folds cannot tell degrees #sections-1 and #sections-2 apart; the higher wins",
+TEST_CASE("Ties: folds cannot tell degrees #sections-1 and #sections-2 apart, the higher wins",
           "[span]") {
   // 7 sections: each fold has 6, where degrees 6 and 5 are both the one quintic polynomial.
   std::vector<Section> s;

@@ -111,7 +111,7 @@ TEST_CASE("refinement_indicator: the digest's worked value", "[volume][adapt]") 
   }
 }
 
-TEST_CASE("refine_tetrahedra: element counts follow the indicator; the mesh stays conforming",
+TEST_CASE("refine_tetrahedra: element counts follow the indicator, the mesh stays conforming",
           "[volume][adapt]") {
   Eigen::MatrixXd V0;
   Eigen::MatrixXi C0;

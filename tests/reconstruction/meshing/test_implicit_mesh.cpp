@@ -57,7 +57,7 @@ TEST_CASE("implicit_mesh: sub-boxes and threads only renumber the vertices", "[i
     }
 }
 
-TEST_CASE("implicit_mesh: vertices on F = 0; sphere and torus volumes converge with order 2",
+TEST_CASE("implicit_mesh: vertices on F = 0, sphere and torus volumes converge with order 2",
           "[implicit]") {
   struct Body {
     ImplicitFunction f;

@@ -145,7 +145,7 @@ TEST_CASE("flip_edges: smallest angle up, topology and volume kept", "[quality]"
   CHECK(flip_edges(V, F) == 0);
 }
 
-TEST_CASE("flip_edges: a thin quad gets its other diagonal; creases and bad input are respected",
+TEST_CASE("flip_edges: a thin quad gets its other diagonal, creases and bad input are respected",
           "[quality]") {
   // A long parallelogram: the shorter diagonal 1-3 gives the larger smallest angle.
   Eigen::MatrixXd V(4, 3);
