@@ -13,6 +13,7 @@
 //                     [--threads T] [--methods interlin,pcl,open3d|all] [--save DIR]
 //                     [--fit KEY=V,KEY=V]... [--diagnose] [--floor] [--no-thin-walls]
 //                     [--no-sheet-normals] [--exact-sigmas S,S] [--span-smoothing auto|off]
+//                     [--holes R/U/V/S,R/U/V/S]
 // (--resolution: interlin's grid cells along the box's longest side; auto, the default:
 // default_mesh_cell, cells of spacing / K with K = --cells-per-spacing, 2 by default.)
 // (--span-smoothing off: the sectioned scans' sections each fitted to its slice alone,
@@ -41,6 +42,9 @@
 // R-function model data/models/body11.rf): clean clouds for the family of the sheet normals.)
 // (--exact-sigmas: one more case blade-exact-sigma-S per sigma S (cm): the blade with the true
 // normals at that noise, for a noise family; name them in --cases.)
+// (--holes: one more case blade-hole-R/U/V/S per item: the blade at noise S (cm) without the
+// points within R (cm) of the loft's point S(U, V), for a family of missing patches; name them
+// in --cases.)
 
 #include "cloud_cases.h"
 #include "poisson_baselines.h"
@@ -510,8 +514,10 @@ struct Options {
   int points = 100000, resolution = 0, threads = 2; // resolution 0: auto
   double cells_per_spacing = 2;
   std::vector<int> depths{8, 9};
-  std::vector<std::string> fits;         // --fit, one interlin row each
-  std::vector<std::string> exact_sigmas; // --exact-sigmas: cases blade-exact-sigma-S
+  std::vector<std::string> fits;            // --fit, one interlin row each
+  std::vector<std::string> exact_sigmas;    // --exact-sigmas: cases blade-exact-sigma-S
+  std::vector<std::array<double, 4>> holes; // --holes: R, U, V, S of cases blade-hole-R/U/V/S
+  std::vector<std::string> hole_keys;
   bool diagnose = false, floor = false, no_thin_walls = false, no_sheet_normals = false;
 };
 
@@ -607,6 +613,21 @@ Options parse_options(int argc, char** argv) {
           throw UsageError(a + " wants sigmas >= 0 (cm), not '" + s + "'");
         o.exact_sigmas.push_back(s);
       }
+    } else if (a == "--holes") {
+      for (const std::string& h : split(v)) {
+        std::array<double, 4> x{};
+        size_t at = 0;
+        for (int k = 0; k < 4; ++k) {
+          const size_t slash = k < 3 ? h.find('/', at) : h.size();
+          x[size_t(k)] = slash == std::string::npos ? -1 : parse_number(h.substr(at, slash - at));
+          at = slash + 1;
+        }
+        if (!(x[0] > 0 && x[1] >= 0 && x[1] <= 1 && x[2] >= 0 && x[2] <= 1 && x[3] >= 0))
+          throw UsageError(a + " wants R/U/V/S (R > 0 cm, U and V in [0, 1], S >= 0 cm), not '" +
+                           h + "'");
+        o.holes.push_back(x);
+        o.hole_keys.push_back("blade-hole-" + h);
+      }
     } else if (a == "--depths") {
       o.depths.clear();
       for (const std::string& d : split(v))
@@ -671,6 +692,11 @@ int main(int argc, char** argv) {
   for (const std::string& s : o.exact_sigmas) // the true normals: the fit alone against the noise
     all.push_back({"blade-exact-sigma-" + s, [&points, s] {
                      return blade_unstructured(points, std::stod(s), 0, 1, Normals::exact);
+                   }});
+  for (size_t i = 0; i < o.holes.size(); ++i)
+    all.push_back({o.hole_keys[i], [&points, h = o.holes[i]] {
+                     return blade_unstructured(points, h[3], h[0], 3, Normals::estimated, h[1],
+                                               h[2]);
                    }});
   std::vector<std::string> keys;
   for (const auto& entry : all)

@@ -5,6 +5,7 @@
 #include "interlin/interflatation/rfunctions/model.h"
 #include "interlin/reconstruction/clouds/prepare_cloud.h"
 #include "interlin/reconstruction/clouds/read_point_cloud.h"
+#include "interlin/reconstruction/clouds/sample_mesh.h"
 #include "interlin/reconstruction/loft/closest_point.h"
 #include "interlin/reconstruction/loft/loft.h"
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
@@ -14,6 +15,7 @@
 #include <fstream>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 namespace interlin::bench {
@@ -162,43 +164,30 @@ double slice_v(const Blade& b, double u, double s, const Station& station) {
 
 } // namespace
 
-PointCloud sample_mesh(const MatrixXd& V, const Eigen::MatrixXi& F, int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(0, 1);
-  std::vector<double> cum(static_cast<size_t>(F.rows()));
-  double total = 0;
-  for (Index f = 0; f < F.rows(); ++f) {
-    const Eigen::RowVector3d p0 = V.row(F(f, 0)), p1 = V.row(F(f, 1)), p2 = V.row(F(f, 2));
-    total += 0.5 * (p1 - p0).cross(p2 - p0).norm();
-    cum[static_cast<size_t>(f)] = total;
-  }
-  PointCloud c;
-  c.points.resize(n, 3);
-  c.normals.resize(n, 3);
-  for (int k = 0; k < n; ++k) {
-    const Index f = std::lower_bound(cum.begin(), cum.end(), U(rng) * total) - cum.begin();
-    double a = U(rng), b = U(rng);
-    if (a + b > 1)
-      a = 1 - a, b = 1 - b;
-    const Eigen::RowVector3d p0 = V.row(F(f, 0)), p1 = V.row(F(f, 1)), p2 = V.row(F(f, 2));
-    c.points.row(k) = p0 + a * (p1 - p0) + b * (p2 - p0);
-    c.normals.row(k) = (p1 - p0).cross(p2 - p0).normalized();
-  }
-  return c;
+namespace {
+std::string shortest(double x) { // 0.25, not 0.250000
+  std::ostringstream s;
+  s << x;
+  return s.str();
 }
+} // namespace
 
-CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed, Normals normals) {
+CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed, Normals normals,
+                             double hole_u, double hole_v) {
   const Blade& b = blade();
   CloudCase c;
   c.name = "rotor37 " + std::to_string(n / 1000) + "k sigma " + std::to_string(sigma).substr(0, 5) +
            (hole > 0 ? " hole" : "") +
+           (hole > 0 && (hole_u != 0.25 || hole_v != 0.5)
+                ? " " + shortest(hole) + " at " + shortest(hole_u) + "/" + shortest(hole_v)
+                : "") +
            (normals == Normals::exact      ? " exact normals"
             : normals == Normals::oriented ? " oriented normals"
                                            : "");
   c.description = std::to_string(n) + " points uniform by area on the capped loft, sigma " +
                   std::to_string(sigma) + " cm" +
-                  (hole > 0 ? ", no points within " + std::to_string(hole) +
-                                  " cm of a suction-side point at mid-span"
+                  (hole > 0 ? ", no points within " + std::to_string(hole) + " cm of S(" +
+                                  shortest(hole_u) + ", " + shortest(hole_v) + ")"
                             : "") +
                   (normals == Normals::exact      ? ", the true normals"
                    : normals == Normals::oriented ? ", estimated normals turned to the true side"
@@ -207,7 +196,7 @@ CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed, No
   if (sigma > 0)
     add_noise(scan, sigma, seed + 7);
   if (hole > 0) {
-    const Vector3d centre = evaluate(b.S, 0.25, 0.5);
+    const Vector3d centre = evaluate(b.S, hole_u, hole_v);
     std::vector<Index> keep;
     for (Index i = 0; i < scan.points.rows(); ++i)
       if ((scan.points.row(i).transpose() - centre).norm() > hole)

@@ -6,6 +6,7 @@
 
 #include "interlin/reconstruction/clouds/point_cloud.h"
 #include "interlin/reconstruction/clouds/prepare_cloud.h"
+#include "interlin/reconstruction/clouds/sample_mesh.h" // the cases' sampler, for bench_clouds too
 
 #include <Eigen/Core>
 #include <cmath>
@@ -46,14 +47,16 @@ void save_case(const CloudCase& c, const std::string& path);
 CloudCase load_case(const std::string& path);
 
 // Rotor 37 blade scanned without structure: n points uniform by area on the capped loft, noise
-// sigma (cm). hole > 0 removes the points within that distance of a suction-side point at
-// mid-span. Normals: prepare_cloud's (estimated), prepare_cloud's with each turned to the side
-// of the true normal (oriented: estimated directions, oracle orientation), or the true normals
-// at the points' noise-free positions (exact); the oracles separate the fit's error from the
-// normals' (docs/benchmarks.md "What limits the unstructured fit").
+// sigma (cm). hole > 0 removes the points within that distance of the loft's point S(hole_u,
+// hole_v) (by default a suction-side point at mid-span). Normals: prepare_cloud's (estimated),
+// prepare_cloud's with each turned to the side of the true normal (oriented: estimated directions,
+// oracle orientation), or the true normals at the points' noise-free positions (exact); the oracles
+// separate the fit's error from the normals' (docs/benchmarks.md "What limits the unstructured
+// fit").
 enum class Normals { estimated, oriented, exact };
 CloudCase blade_unstructured(int n, double sigma, double hole, unsigned seed,
-                             Normals normals = Normals::estimated);
+                             Normals normals = Normals::estimated, double hole_u = 0.25,
+                             double hole_v = 0.5);
 
 // Rotor 37 blade scanned in `slices` planar sections x = const (radial: cylinders r = const about
 // the z axis) between hub and tip, `per_slice` points each, evenly spaced along the profile,
@@ -73,8 +76,5 @@ void set_case_preparation(const CloudPrepOptions& o);
 
 // data/clouds/bun0.pcd (its normals re-oriented by prepare_cloud).
 CloudCase bunny();
-
-// Points uniform by area on a triangle mesh (with the triangle normals).
-PointCloud sample_mesh(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int n, unsigned seed);
 
 } // namespace interlin::bench
