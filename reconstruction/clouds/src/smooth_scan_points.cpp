@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -71,33 +70,6 @@ bool solve_rung(const Matrix6d& A, const Vector6d& b, double sigma, Rung& r) {
   return true;
 }
 
-// The k nearest indexed points of p in rungs: the 16 nearest first, then the 16 next, the 32
-// next, ..., each rung in no order (the fits need only the rungs). FLANN's k-nearest search
-// keeps its result sorted by insertion, k^2 work per query at k = 1,024; a radius search over the
-// disc that holds k points at the spacing of p's 16 nearest, then one selection per rung, is
-// linear.
-void nearest_by_rung(const detail::NeighbourIndex& index, const Vector3d& p, int k,
-                     std::vector<int>& idx, std::vector<double>& d2) {
-  index.knn(p, kFirstRung, idx, d2);
-  if (int(idx.size()) < kFirstRung || k <= kFirstRung)
-    return;
-  constexpr double kRadiusMargin = 1.2; // room for the density's variation over the disc
-  const double r = kRadiusMargin * std::sqrt(d2.back() * double(k) / kFirstRung);
-  index.radius(p, r, idx, d2);
-  std::vector<std::pair<double, int>> order(idx.size());
-  for (size_t j = 0; j < idx.size(); ++j)
-    order[j] = {d2[j], idx[j]};
-  const size_t keep = std::min(order.size(), size_t(k)); // >= 16: the 16 nearest are inside
-  // rungs [a, b): b = 16, 32, ... and the last one ends at keep (k need not be 16 times 2^m)
-  for (size_t a = 0, b = kFirstRung; a < keep; a = b, b = std::min(2 * b, keep))
-    if (b < order.size())
-      std::nth_element(order.begin() + long(a), order.begin() + long(b), order.end());
-  idx.resize(keep);
-  d2.resize(keep);
-  for (size_t j = 0; j < keep; ++j)
-    std::tie(d2[j], idx[j]) = order[j];
-}
-
 // Points and normals as rows (x, y, z, nx, ny, nz) in Z-order: a point's neighbours lie near it
 // in memory (in input order each of the 1,024 neighbours is a cache miss, and they took most
 // of the time).
@@ -120,6 +92,59 @@ std::vector<Index> z_order(const Eigen::MatrixX3d& P) {
   return order;
 }
 
+// The k nearest indexed points of p in rungs: the 16 nearest, then the 16 next, the 32 next,
+// ..., each rung in no order (the fits need only the rungs). FLANN's k-nearest search keeps its
+// result sorted by insertion, k^2 work per query at k = 1,024; a radius search over the disc
+// that holds k points at the spacing of p's 16 nearest, then one selection per rung, is linear.
+// Each rung is selected when it is asked for: most points' rungs stop early (Lepski).
+class RungNeighbours {
+public:
+  RungNeighbours(const detail::NeighbourIndex& index, const Vector3d& p, int k) {
+    std::vector<int> idx;
+    std::vector<double> d2;
+    index.knn(p, kFirstRung, idx, d2);
+    if (int(idx.size()) == kFirstRung && k > kFirstRung) {
+      constexpr double kRadiusMargin = 1.2; // room for the density's variation over the disc
+      index.radius(p, kRadiusMargin * std::sqrt(d2.back() * double(k) / kFirstRung), idx, d2);
+    }
+    order_.resize(idx.size());
+    for (size_t j = 0; j < idx.size(); ++j)
+      order_[j] = {d2[j], idx[j]};
+    end_ = std::min(order_.size(), size_t(std::max(k, kFirstRung))); // the 16 nearest are inside
+    if (end_ < d2.size())
+      std::nth_element(d2.begin(), d2.begin() + long(end_ - 1), d2.end());
+    far_ = d2.empty() ? 0 : std::sqrt(*std::max_element(d2.begin(), d2.begin() + long(end_)));
+  }
+  // The distance of the farthest point of the rungs.
+  double far() const { return far_; }
+  // Rung [a, b) (b = 16, 32, ..., or the last point) into order()[a, b); false when none is left.
+  bool rung(size_t a, size_t& b) {
+    b = select(a);
+    return a < end_;
+  }
+  // (squared distance, index) of the points in rungs
+  const std::vector<std::pair<double, int>>& order() const { return order_; }
+  // The radius of the rungs up to b: the distance to a point of the next rung, or to the
+  // farthest point after the last rung.
+  double reach(size_t b) { return b < end_ ? (select(b), std::sqrt(order_[b].first)) : far_; }
+
+private:
+  // The end of the rung that starts at a, its points selected (once).
+  size_t select(size_t a) {
+    const size_t b = std::min(a < size_t(kFirstRung) ? size_t(kFirstRung) : 2 * a, end_);
+    if (a >= selected_ && a < end_) {
+      if (b < order_.size())
+        std::nth_element(order_.begin() + long(a), order_.begin() + long(b), order_.end());
+      selected_ = b;
+    }
+    return b;
+  }
+  size_t end_ = 0;      // the rungs cover order_[0, end_)
+  size_t selected_ = 0; // the rungs up to here are selected
+  double far_ = 0;
+  std::vector<std::pair<double, int>> order_;
+};
+
 // The chosen rung at row i of X (Lepski); false when no rung has kLeastOnSheet points on the
 // sheet.
 bool smooth_point(const PointRows& X, Index i, const detail::NeighbourIndex& index, double sigma,
@@ -127,38 +152,34 @@ bool smooth_point(const PointRows& X, Index i, const detail::NeighbourIndex& ind
   Rung r;
   r.origin = X.row(i).head<3>().transpose();
   const Vector3d n = X.row(i).tail<3>().transpose();
-  std::vector<int> idx;
-  std::vector<double> d2;
-  nearest_by_rung(index, r.origin, k_max, idx, d2);
+  RungNeighbours near(index, r.origin, k_max);
   r.frame = detail::tangent_frame(n);
-  const double far = std::sqrt(*std::max_element(d2.begin(), d2.end()));
-  r.s = far > 0 ? far : 1.0;
+  r.s = near.far() > 0 ? near.far() : 1.0;
   Matrix6d A = Matrix6d::Zero();
   Vector6d b = Vector6d::Zero();
   std::vector<Rung> rungs;
   int on_sheet = 0;
-  for (size_t j = 0, rung = kFirstRung; j < idx.size(); ++j) {
-    const auto q = X.row(idx[j]);
-    if (q.tail<3>().dot(n.transpose()) >= kSheetCos) {
+  for (size_t a = 0, e = 0; near.rung(a, e); a = e) {
+    for (size_t j = a; j < e; ++j) {
+      const auto q = X.row(near.order()[j].second);
+      if (q.tail<3>().dot(n.transpose()) < kSheetCos)
+        continue;
       const Vector3d l = r.frame * (q.head<3>().transpose() - r.origin) / r.s;
       const Vector6d phi = detail::HeightQuadric::basis(l(0), l(1)).transpose();
       A.selfadjointView<Eigen::Lower>().rankUpdate(phi);
       b += phi * l(2);
       ++on_sheet;
     }
-    if (j + 1 != rung && j + 1 != idx.size())
-      continue;
-    rung *= 2;
     if (on_sheet < kLeastOnSheet ||
         !solve_rung(Matrix6d(A.selfadjointView<Eigen::Lower>()), b, sigma, r))
       continue;
-    r.reach = j + 1 < idx.size() ? std::sqrt(d2[j + 1]) : far;
+    r.reach = near.reach(e);
     for (const Rung& q : rungs)
       if (std::abs(r.h - q.h) > kappa * q.sd)
         return !rungs.empty();
     rungs.push_back(r);
     chosen = r;
-    k_chosen = int(j + 1);
+    k_chosen = int(e);
   }
   return !rungs.empty();
 }
