@@ -45,7 +45,8 @@ Options:
   -o, --output FILE      output file (repeatable)
   --resolution N         cells along the longest side of the box (default 128; for the
                          surface of a point cloud's .ifl: cells of half the cloud's point
-                         spacing, 32 to 1024 along the longest side)
+                         spacing, of the spacing for a smoothed noisy scan; 32 to 1024 along
+                         the longest side)
   --cell H               cell size instead of --resolution
   --box X0,Y0,Z0,X1,Y1,Z1
                          region to mesh (default: the model's box)
@@ -331,7 +332,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   progress("reading " + input);
   const ImplicitFunction f = load_implicit(input, mo);
   const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
-  // a surface of a model fitted to points: cells of half the point spacing by default
+  // a surface of a model fitted to points: cells of half the detail it resolves by default
   if (!a.has("resolution") && !a.has("cell") && !a.has("volume") && f.sample_spacing > 0)
     o.cell = default_mesh_cell(f, box);
   check_grid(a, box, o);

@@ -319,7 +319,8 @@ void bind_meshing(py::module_& m) {
       py::arg("threads") = 0, py::arg("project") = true, py::arg("tolerance") = 1e-10,
       R"(Closed mesh of the body {F > 0} (interlin mesh): a grid with `resolution` cubic cells along
 the box's longest side (or cells of size `cell`; neither: default_mesh_cell, i.e. 128 cells, or
-cells of half the point spacing for a point cloud's fit), marching cubes per sub-box on
+cells of half the point spacing for a point cloud's fit, of the spacing for a smoothed noisy
+scan), marching cubes per sub-box on
 `threads` threads (0: all cores), vertices projected onto F = 0 -> (V (N, 3), F (M, 3) int32).
 box (2, 3) defaults to f.box; the mesh closes along the box where the body reaches it. Closed,
 2-manifold, oriented outward.)");

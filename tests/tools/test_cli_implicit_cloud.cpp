@@ -169,8 +169,8 @@ TEST_CASE("CLI implicit: noisy scans' points smoothed by default, --smooth-point
                "--smooth-points applies to the partition of unity");
 }
 
-TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by default; points "
-          "per fit",
+TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half the detail it resolves by default, "
+          "points per fit",
           "[cli][implicit][clouds]") {
   TempDir d("implicitcloudcell");
   write_cloud(d / "scan.xyz", sample_shape(SampledShape{Shape::sphere}, 3000, 0.002, 44));
@@ -195,8 +195,13 @@ TEST_CASE("CLI implicit: a cloud's .ifl is meshed at half its point spacing by d
   CHECK(spacing == Approx(std::sqrt(4 * M_PI / 3000)).epsilon(0.15));
   r = run("mesh " + d / "scan.ifl -o " + d / "scan.stl -q");
   REQUIRE(r.status == 0);
-  // both printed with 4 significant digits
-  CHECK(number_after(r.out, "nodes, cell ") == Approx(spacing / 2).epsilon(1e-3));
+  // both printed with 4 significant digits; the noisy scan's points were smoothed, so its F
+  // resolves twice the spacing and the default cell is the spacing; the clean cloud's is half
+  CHECK(number_after(r.out, "nodes, cell ") == Approx(spacing).epsilon(1e-3));
+  r = run("mesh " + d / "clean.ifl -o " + d / "clean.stl -q");
+  REQUIRE(r.status == 0);
+  CHECK(number_after(r.out, "nodes, cell ") ==
+        Approx(number_after(clean.out, "point spacing ") / 2).epsilon(1e-3));
   CHECK_THAT(r.out, Catch::Contains(", watertight,"));
   // an explicit resolution still rules
   r = run("mesh " + d / "scan.ifl -o " + d / "scan.stl --resolution 20 -q");

@@ -258,20 +258,61 @@ bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k,
   return true;
 }
 
+// Whether Q changes sign in f's ball and has the sign opposite to a decisive winding number (within
+// kDecisive of 0 or 1) at kWindingLeast or more lattice points of the ball (kWindingLattice^3
+// in its cube); side: the winding number's side there (inside when w > 1/2).
+bool contradicts_winding(const Points& pts, const LocalFit& f, double& side) {
+  constexpr int kWindingLattice = 5, kWindingLeast = 2;
+  constexpr double kDecisive = 0.05;
+  std::vector<Vector3d> lattice;
+  std::vector<double> q;
+  for (int i = 0; i < kWindingLattice; ++i)
+    for (int j = 0; j < kWindingLattice; ++j)
+      for (int k = 0; k < kWindingLattice; ++k) {
+        const Vector3d t = Vector3d(i, j, k) * (2.0 / (kWindingLattice - 1)) - Vector3d::Ones();
+        if (t.squaredNorm() > 1)
+          continue;
+        lattice.push_back(f.centre + f.radius * t);
+        q.push_back(detail::fit_value(f, lattice.back(), nullptr));
+      }
+  const auto [lo, hi] = std::minmax_element(q.begin(), q.end());
+  if (*lo > 0 || *hi < 0)
+    return false;
+  int inside = 0, outside = 0; // decisive lattice points where Q has the other sign
+  for (size_t l = 0; l < lattice.size(); ++l) {
+    const double w = pts.winding(lattice[l]);
+    inside += w > 1 - kDecisive && q[l] < 0;
+    outside += w < kDecisive && q[l] > 0;
+  }
+  side = inside > outside ? 1.0 : 0.0;
+  return std::max(inside, outside) >= kWindingLeast;
+}
+
 // A leaf whose centre lies at least kSignSpacings point spacings (sqrt of the nearest point's
 // area) from the points, and whose Q there has the sign opposite to the winding number's side,
 // takes the far plane: at that distance the winding number is reliable and the fit has curved
 // back or extends a wall past its edge (a two-sheet slab beyond a blade's trailing edge).
-// Returns true when it did.
+// A leaf whose ball holds no point but whose Q changes sign in it has a zero set where no point
+// lies: a surface across a gap of the sampling (a blade's missing patch) or a spurious sheet past
+// a thin edge (a blob 0.5 cm off the blade's tip corner: check_exterior catches it where the
+// flood fill is trusted, and the fill leaks through the patch). Where the winding number is
+// decisive and Q contradicts it (contradicts_winding: w 0.00 at that blob, 0.14 between the
+// blade's faces at the patch's centre), it takes the far plane on the winding number's side.
+// Returns true when it did either.
 bool check_sign(const Points& pts, const detail::NeighbourIndex& index, LocalFit& f) {
   constexpr double kSignSpacings = 2;
   std::vector<int> idx;
   std::vector<double> d2;
   index.knn(f.centre, 1, idx, d2);
-  if (d2[0] < kSignSpacings * kSignSpacings * pts.area(idx[0]))
-    return false;
-  const double w = pts.winding(f.centre);
-  if ((detail::fit_value(f, f.centre, nullptr) > 0) == (w > 0.5))
+  double w = 0.5;
+  if (d2[0] >= kSignSpacings * kSignSpacings * pts.area(idx[0])) {
+    w = pts.winding(f.centre);
+    if ((detail::fit_value(f, f.centre, nullptr) > 0) != (w > 0.5)) {
+      far_plane(pts, idx[0], w, f);
+      return true;
+    }
+  }
+  if (d2[0] < f.radius * f.radius || !contradicts_winding(pts, f, w))
     return false;
   far_plane(pts, idx[0], w, f);
   return true;
@@ -462,6 +503,16 @@ bool split_on_sample(Cell& c, const detail::NeighbourIndex& sample, const Points
   return true;
 }
 
+// Splits cell c (its fit set, not far: far planes lie off the surface) where its fit contradicts
+// the flood fill (exterior: the trusted fill, else null); a split cell's fit is not passed on to
+// gaps either.
+void split_on_exterior(Cell& c, const detail::ExteriorGrid* exterior, int max_depth) {
+  if (c.far || !exterior || c.level >= max_depth || !contradicts_exterior(*exterior, c.fit))
+    return;
+  c.split = c.exterior_split = true;
+  c.smooth = false;
+}
+
 // Fits cell c (parent: the fit of the cell it came from, null if none or not smooth); decides
 // whether it is split: for its misfit, or (exterior: the trusted flood fill, else null) where its
 // fit contradicts the fill.
@@ -483,6 +534,7 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
   index.radius(f.centre, R, idx, d2);
   if (int(idx.size()) < rule.min_points) {
     c.far = fit_sparse(pts, index, rule.min_points, parent, f);
+    split_on_exterior(c, exterior, o.max_depth);
     return;
   }
   const bool ok = fit_cell(pts, idx, weights(d2, R), R, f);
@@ -495,8 +547,8 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
   c.split = !accepted && c.level < o.max_depth && int(idx.size()) >= kSplitShare * rule.min_points;
   if (!ok && !c.split) // no usable fit and no refinement left: the nearest points' fit
     c.far = fit_sparse(pts, index, rule.min_points, parent, f);
-  if (ok && !c.split && exterior && c.level < o.max_depth && contradicts_exterior(*exterior, f))
-    c.split = c.exterior_split = true, c.smooth = false; // not passed on to gaps either
+  if (!c.split)
+    split_on_exterior(c, exterior, o.max_depth);
 }
 
 // Z-order (Morton) key of a leaf's cell at the resolution of level `depth` (<= 21): leaves sorted
@@ -716,7 +768,14 @@ CloudImplicit fit_cloud_implicit(const PointCloud& c, const CloudFitOptions& o,
   CloudFitOptions fo = o;
   if (smooth) // the octree the scan's noise asks for, its leaves fitted to the smoothed points
     fo.noise = info.smoothing_noise;
-  const CloudImplicit m = fit_octree(smooth ? smoothed : c, fo, scan_noise, info);
+  CloudImplicit m = fit_octree(smooth ? smoothed : c, fo, scan_noise, info);
+  // A smoothed scan's points lie on quadrics of 16 to k_max neighbours: F shows no detail finer
+  // than about twice the point spacing, and a mesh cell of the spacing loses 0 to 2.5 % of the
+  // Chamfer to one of half of it at 30 to 45 % less time (docs/benchmarks.md, "The mesh cell of
+  // smoothed scans").
+  constexpr double kSmoothedSpacings = 2;
+  if (smooth)
+    m.spacing = kSmoothedSpacings * info.spacing;
   info.noise_estimated = !(o.noise > 0);
   // How far the zero set passes from the input points (first-order distance |F| / |grad F|).
   const double sigma = smooth ? info.smoothing_noise : std::max(info.noise, kSigmaFloor * m.size);

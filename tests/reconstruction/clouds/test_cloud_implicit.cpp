@@ -3,14 +3,21 @@
 // independence; far field; model validation.
 
 #include "interlin/reconstruction/clouds/cloud_implicit.h"
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
+#include "interlin/reconstruction/clouds/sample_mesh.h"
+#include "interlin/reconstruction/loft/loft.h"
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
+#include "interlin/reconstruction/meshing/surface_mesh.h"
 
 #include "exterior_side.h"
 #include "nearest_neighbours.h"
 #include "support/test_clouds.h"
+#include "support/test_sections.h"
+#include "winding_number.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <memory>
 #include <random>
 #include <string>
@@ -539,6 +546,80 @@ TEST_CASE("cloud implicit: leaves off the surface keep the flood fill's side ove
     }
 }
 
+TEST_CASE(
+    "cloud implicit: where the flood fill leaks, no empty leaf has a zero set that a decisive "
+    "winding number contradicts",
+    "[clouds][implicit]") {
+  // The Rotor 37 blade (its capped loft), 30,000 points, noise 0.005 cm, none within 0.75 cm of
+  // S(0.25, 0.5): the hole goes through both faces, the flood fill leaks into the blade and is
+  // not used. A leaf whose ball holds no point but whose Q changes sign in it puts a sheet of F
+  // where no point is; where the winding number is decisive (below 0.02 or above 0.98 here,
+  // within the fit's 0.05 with room for this test's winding number of the unsmoothed points), Q
+  // must not contradict it at 2 or more lattice points (5^3 over the ball). Measured without
+  // the check (check_sign's lattice branch): 2 such leaves of 5 with a sign change, a blob 0.5 cm
+  // off the blade's tip corner (bench_clouds --points 30000: Chamfer 0.000699, with the check
+  // 0.000618).
+  const PiecewiseSurface S = to_piecewise(loft_sections(test::rotor37()).surface);
+  SurfaceMeshOptions mo;
+  mo.nu = 600;
+  mo.nv = 150;
+  mo.cap = true;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi T;
+  surface_mesh(S, mo, V, T);
+  PointCloud scan = sample_mesh(V, T, 30000, 3);
+  std::mt19937 rng(10);
+  std::normal_distribution<double> G(0, 0.005);
+  const Eigen::RowVector3d centre = evaluate(S, 0.25, 0.5).transpose();
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index i = 0; i < scan.points.rows(); ++i) {
+    scan.points.row(i) += Eigen::RowVector3d(G(rng), G(rng), G(rng));
+    if ((scan.points.row(i) - centre).norm() > 0.75)
+      keep.push_back(i);
+  }
+  const PointCloud c = prepare_cloud("blade", PointCloud{scan.points(keep, Eigen::all)});
+  CloudFitInfo info;
+  const CloudImplicit m = fit_cloud_implicit(c, {}, &info);
+  REQUIRE(info.exterior_negated_leaves + info.exterior_split_cells == 0); // the fill is not used
+  const detail::NeighbourIndex index(c.points);
+  const Eigen::VectorXd area =
+      detail::point_areas(c.points, index.knn_all(detail::kAreaNeighbours, 1));
+  const detail::WindingNumber winding(c.points, c.normals, area);
+  long empty = 0, sign_changes = 0, contradicted = 0;
+  for (const LocalFit& leaf : m.fits) {
+    std::vector<int> nearest;
+    std::vector<double> d2;
+    index.knn(leaf.centre, 1, nearest, d2);
+    if (d2[0] < leaf.radius * leaf.radius)
+      continue;
+    ++empty;
+    std::vector<Eigen::Vector3d> X;
+    std::vector<double> q;
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j)
+        for (int k = 0; k < 5; ++k) {
+          const Eigen::Vector3d t = Eigen::Vector3d(i, j, k) / 2.0 - Eigen::Vector3d::Ones();
+          if (t.squaredNorm() <= 1) {
+            X.push_back(leaf.centre + leaf.radius * t);
+            q.push_back(local_fit_value(leaf, X.back(), nullptr));
+          }
+        }
+    if (*std::min_element(q.begin(), q.end()) > 0 || *std::max_element(q.begin(), q.end()) < 0)
+      continue;
+    ++sign_changes;
+    int wrong = 0;
+    for (size_t l = 0; l < X.size(); ++l) {
+      const double w = winding(X[l]);
+      wrong += (w < 0.02 && q[l] > 0) || (w > 0.98 && q[l] < 0);
+    }
+    contradicted += wrong >= 2;
+  }
+  INFO(empty << " empty leaves, " << sign_changes << " with a sign change, " << contradicted
+             << " contradicted; " << info.sign_fixed_leaves << " re-signed by the fit");
+  CHECK(empty > 100);
+  CHECK(contradicted == 0);
+}
+
 TEST_CASE("cloud implicit: a clean cloud's fits are held to its scan noise, not to the shape in "
           "estimate_noise",
           "[clouds][implicit]") {
@@ -572,14 +653,15 @@ TEST_CASE("cloud implicit: a clean cloud's fits are held to its scan noise, not 
 }
 
 TEST_CASE("cloud implicit: on a noisy scan, cells whose fit contradicts the flood fill in part are "
-          "split; clean clouds are not",
+          "split, clean clouds are not",
           "[clouds][implicit]") {
   // The two faces z = +-0.015 of the plate [-1, 1] x [-0.6, 0.6] (a spacing apart, one band of
   // the fill's shell), no points on its rim: each face fits as a plane, a cell over the rim joins
   // them into a slab that runs on past it, and the scan's noise (half a spacing) keeps such cells
   // large. Probes on the mid-plane z = 0 beyond the rim by 3 spacings + 3 sigma are outside.
-  // Measured: 281 cells split, no leaf negated; F >= 0 at 97 of the 280 probes, 280 without the
-  // fill (the slab reaches every one); bound: fewer than half.
+  // Measured: 1,029 cells split (cells too sparse for a fit of their own split too), 4 leaves
+  // negated; F >= 0 at none of the 280 probes, at all 280 without the fill (the slab reaches
+  // every one; 97 when only cells with a fit of their own were split); bound: a twentieth.
   const int n = 40000;
   const double spacing = std::sqrt(2 * 2.0 * 1.2 / n), sigma = 0.5 * spacing;
   std::mt19937 rng(5);
@@ -608,9 +690,8 @@ TEST_CASE("cloud implicit: on a noisy scan, cells whose fit contradicts the floo
                 << "; probes F >= 0 with " << spurious_on << ", without " << spurious_off);
   CHECK(off.exterior_split_cells == 0);
   CHECK(on.exterior_split_cells > 0);
-  CHECK(on.exterior_negated_leaves == 0); // the split alone
   CHECK(spurious_off == probes.rows());
-  CHECK(2 * spurious_on < spurious_off);
+  CHECK(20 * spurious_on < spurious_off);
   // A clean cloud (scan noise below kCleanScanNoise spacings) is never split on the fill.
   CloudFitInfo clean;
   fit_cloud_implicit(test::sample_shape({test::Shape::ellipsoid, 1, 0.05}, 12000, 0, 25), {},

@@ -27,8 +27,8 @@ struct ImplicitFunction {
   // cannot tell (a bound, e.g. interval arithmetic: 0 is always a correct answer). Meshers skip
   // boxes with a sign (implicit_mesh's narrow band). Empty: unknown everywhere.
   std::function<int(const Eigen::AlignedBox3d& B)> sign_on_box;
-  // The spacing of the samples F was fitted to (a point cloud's median point spacing), which
-  // sets the mesh cell that shows what F resolves (default_mesh_cell); 0 when unknown.
+  // The finest detail F resolves (a point cloud fit's point spacing, twice it for a smoothed
+  // noisy scan), which sets the mesh cell that shows it (default_mesh_cell); 0 when unknown.
   double sample_spacing = 0;
 };
 

@@ -62,7 +62,9 @@ struct LocalFit {
 //   support       PU radius / cell diagonal used for every leaf (Ohtake et al.'s alpha); each
 //                 fit's radius is support x its cell's diagonal
 //   fits          the octree leaves; together they tile the root cube
-//   spacing       the median point spacing of the fitted cloud (0: unknown, e.g. an older file)
+//   spacing       the finest detail F resolves, which sets the default mesh cell (half of it:
+//                 default_mesh_cell): the median point spacing of the fitted cloud, twice it
+//                 when its points were smoothed (info.smoothed_points); 0: unknown (older files)
 struct CloudImplicit {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   double size = 1;
@@ -159,7 +161,10 @@ struct CloudFitInfo {
 // to the points outside, plus the distance inside, and never changes sign within the ball (the
 // tangent planes of a thin wall's two sides both say "inside" past its edge, which made spurious
 // sheets). After fitting, every leaf whose centre is at least 2 point spacings from the points and
-// whose Q there contradicts the winding number takes that plane too (info.sign_fixed_leaves).
+// whose Q there contradicts the winding number takes that plane too, and so does a leaf whose
+// ball holds no point but whose Q changes sign in it and contradicts a decisive winding number
+// (below 0.05 or above 0.95) at 2 or more points of a 5^3 lattice over the ball: a sheet of F
+// where no point lies, off a thin corner (info.sign_fixed_leaves).
 // Then (options.exterior_side) a voxel flood fill of the points' shell (1.5 point spacings) reads
 // the outside and the inside from the positions alone; when the winding number agrees with it at
 // 97 % of the free voxels next to the shell (the shell closes the cloud), a leaf whose Q has the
@@ -167,8 +172,9 @@ struct CloudFitInfo {
 // ball is negated (info.exterior_negated_leaves): its normals were wrong where neither the
 // orientation nor the winding number can tell, as at a blade's thin edges. The grid is built
 // before the octree, and on a noisy scan a cell whose fit has the wrong sign at 8 (and fewer
-// than 90 %) of those lattice points is split (info.exterior_split_cells): a thin wall's two
-// sheets joined into a slab that runs on past the wall's edge.
+// than 90 %) of those lattice points is split (info.exterior_split_cells; cells too sparse for a
+// fit of their own too): a thin wall's two sheets joined into a slab that runs on past the
+// wall's edge.
 // Before fitting, the normals' orientation is checked by the divergence theorem (sum of a_i n_i .
 // (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per point): inward normals
 // are flipped and info.flipped is set. Throws std::invalid_argument for a cloud without normals,
