@@ -68,6 +68,29 @@ WithAndWithoutFill fit_with_and_without_fill(const PointCloud& c, const Points3&
   return r;
 }
 
+// Whether the leaf's support ball holds a point of the index.
+bool ball_holds_a_point(const detail::NeighbourIndex& index, const LocalFit& leaf) {
+  std::vector<int> nearest;
+  std::vector<double> d2;
+  index.knn(leaf.centre, 1, nearest, d2);
+  return d2[0] < leaf.radius * leaf.radius;
+}
+
+// The points of an n x n x n lattice over the leaf's cube that lie in its support ball (the
+// fit's own checks use n = 9 and 5).
+std::vector<Eigen::Vector3d> ball_lattice(const LocalFit& leaf, int n) {
+  std::vector<Eigen::Vector3d> X;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const Eigen::Vector3d t =
+            Eigen::Vector3d(i, j, k) * (2.0 / (n - 1)) - Eigen::Vector3d::Ones();
+        if (t.squaredNorm() <= 1)
+          X.push_back(leaf.centre + leaf.radius * t);
+      }
+  return X;
+}
+
 } // namespace
 
 TEST_CASE("cloud implicit: zero set within the noise of sphere, torus and thin ellipsoid",
@@ -513,26 +536,17 @@ TEST_CASE("cloud implicit: leaves off the surface keep the flood fill's side ove
       const detail::NeighbourIndex index(c.points);
       long empty = 0, one_sided = 0, disagreeing = 0;
       for (const LocalFit& leaf : f.model->fits) {
-        std::vector<int> nearest;
-        std::vector<double> d2;
-        index.knn(leaf.centre, 1, nearest, d2);
-        if (d2[0] < leaf.radius * leaf.radius)
+        if (ball_holds_a_point(index, leaf))
           continue;
         ++empty;
         int inside = 0, outside = 0, disagree = 0;
-        for (int i = 0; i < 9; ++i) // the lattice of check_exterior: 9^3 over the ball
-          for (int j = 0; j < 9; ++j)
-            for (int k = 0; k < 9; ++k) {
-              const Eigen::Vector3d t = Eigen::Vector3d(i, j, k) / 4.0 - Eigen::Vector3d::Ones();
-              if (t.squaredNorm() > 1)
-                continue;
-              const Eigen::Vector3d x = leaf.centre + leaf.radius * t;
-              const int side = detail::exterior_side(g, x);
-              const double q = local_fit_value(leaf, x, nullptr);
-              inside += side < 0;
-              outside += side > 0;
-              disagree += side != 0 && q != 0 && (q > 0) != (side < 0);
-            }
+        for (const Eigen::Vector3d& x : ball_lattice(leaf, 9)) { // check_exterior's lattice
+          const int side = detail::exterior_side(g, x);
+          const double q = local_fit_value(leaf, x, nullptr);
+          inside += side < 0;
+          outside += side > 0;
+          disagree += side != 0 && q != 0 && (q > 0) != (side < 0);
+        }
         if (inside > 0 && outside > 0)
           continue;
         ++one_sided;
@@ -587,23 +601,13 @@ TEST_CASE(
   const detail::WindingNumber winding(c.points, c.normals, area);
   long empty = 0, sign_changes = 0, contradicted = 0;
   for (const LocalFit& leaf : m.fits) {
-    std::vector<int> nearest;
-    std::vector<double> d2;
-    index.knn(leaf.centre, 1, nearest, d2);
-    if (d2[0] < leaf.radius * leaf.radius)
+    if (ball_holds_a_point(index, leaf))
       continue;
     ++empty;
-    std::vector<Eigen::Vector3d> X;
+    const std::vector<Eigen::Vector3d> X = ball_lattice(leaf, 5); // check_sign's lattice
     std::vector<double> q;
-    for (int i = 0; i < 5; ++i)
-      for (int j = 0; j < 5; ++j)
-        for (int k = 0; k < 5; ++k) {
-          const Eigen::Vector3d t = Eigen::Vector3d(i, j, k) / 2.0 - Eigen::Vector3d::Ones();
-          if (t.squaredNorm() <= 1) {
-            X.push_back(leaf.centre + leaf.radius * t);
-            q.push_back(local_fit_value(leaf, X.back(), nullptr));
-          }
-        }
+    for (const Eigen::Vector3d& x : X)
+      q.push_back(local_fit_value(leaf, x, nullptr));
     if (*std::min_element(q.begin(), q.end()) > 0 || *std::max_element(q.begin(), q.end()) < 0)
       continue;
     ++sign_changes;
