@@ -294,12 +294,12 @@ bool contradicts_winding(const Points& pts, const LocalFit& f, double& side) {
 // back or extends a wall past its edge (a two-sheet slab beyond a blade's trailing edge).
 // A leaf whose ball holds no point but whose Q changes sign in it has a zero set where no point
 // lies: a surface across a gap of the sampling (a blade's missing patch) or a spurious sheet past
-// a thin edge (a blob 0.5 cm off the blade's tip corner: check_exterior catches it where the
-// flood fill is trusted, and the fill leaks through the patch). Where the winding number is
-// decisive and Q contradicts it (contradicts_winding: w 0.00 at that blob, 0.14 between the
-// blade's faces at the patch's centre), it takes the far plane on the winding number's side.
-// Returns true when it did either.
-bool check_sign(const Points& pts, const detail::NeighbourIndex& index, LocalFit& f) {
+// a thin edge (a blob 0.5 cm off the blade's tip corner, which check_exterior catches where the
+// flood fill is trusted; the fill leaks through the patch). Without a trusted fill (no_fill),
+// where the winding number is decisive and Q contradicts it (contradicts_winding: w 0.00 at that
+// blob, 0.14 between the blade's faces at the patch's centre), it takes the far plane on the
+// winding number's side. Returns true when it did either.
+bool check_sign(const Points& pts, const detail::NeighbourIndex& index, bool no_fill, LocalFit& f) {
   constexpr double kSignSpacings = 2;
   std::vector<int> idx;
   std::vector<double> d2;
@@ -312,7 +312,7 @@ bool check_sign(const Points& pts, const detail::NeighbourIndex& index, LocalFit
       return true;
     }
   }
-  if (d2[0] < f.radius * f.radius || !contradicts_winding(pts, f, w))
+  if (!no_fill || d2[0] < f.radius * f.radius || !contradicts_winding(pts, f, w))
     return false;
   far_plane(pts, idx[0], w, f);
   return true;
@@ -674,10 +674,10 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
     if (cells[i].child < 0 && !cells[i].far)
       leaves.push_back(i);
   std::vector<char> fixed(leaves.size(), 0);
-  detail::parallel_for(static_cast<long>(leaves.size()), detail::resolve_threads(o.threads),
-                       [&](long t, int) {
-                         fixed[size_t(t)] = check_sign(pts, index, cells[leaves[size_t(t)]].fit);
-                       });
+  detail::parallel_for(
+      static_cast<long>(leaves.size()), detail::resolve_threads(o.threads), [&](long t, int) {
+        fixed[size_t(t)] = check_sign(pts, index, !exterior, cells[leaves[size_t(t)]].fit);
+      });
   info.sign_fixed_leaves = std::count(fixed.begin(), fixed.end(), 1);
   if (exterior) { // far leaves too: their sides came from the winding number alone
     std::vector<size_t> all;

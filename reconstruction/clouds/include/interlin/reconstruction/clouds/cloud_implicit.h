@@ -161,10 +161,11 @@ struct CloudFitInfo {
 // to the points outside, plus the distance inside, and never changes sign within the ball (the
 // tangent planes of a thin wall's two sides both say "inside" past its edge, which made spurious
 // sheets). After fitting, every leaf whose centre is at least 2 point spacings from the points and
-// whose Q there contradicts the winding number takes that plane too, and so does a leaf whose
-// ball holds no point but whose Q changes sign in it and contradicts a decisive winding number
-// (below 0.05 or above 0.95) at 2 or more points of a 5^3 lattice over the ball: a sheet of F
-// where no point lies, off a thin corner (info.sign_fixed_leaves).
+// whose Q there contradicts the winding number takes that plane too, and so does (where the flood
+// fill below is not trusted) a leaf whose ball holds no point but whose Q changes sign in it and
+// contradicts a decisive winding number (below 0.05 or above 0.95) at 2 or more points of a 5^3
+// lattice over the ball: a sheet of F where no point lies, off a thin corner
+// (info.sign_fixed_leaves).
 // Then (options.exterior_side) a voxel flood fill of the points' shell (1.5 point spacings) reads
 // the outside and the inside from the positions alone; when the winding number agrees with it at
 // 97 % of the free voxels next to the shell (the shell closes the cloud), a leaf whose Q has the
