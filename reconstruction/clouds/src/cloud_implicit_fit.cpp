@@ -258,23 +258,30 @@ bool fit_sparse(const Points& pts, const detail::NeighbourIndex& index, int k,
   return true;
 }
 
+// The points of an n x n x n lattice over f's cube [centre - radius, centre + radius]^3 that lie
+// in its support ball, in lattice order.
+std::vector<Vector3d> ball_lattice(const LocalFit& f, int n) {
+  std::vector<Vector3d> X;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const Vector3d t = Vector3d(i, j, k) * (2.0 / (n - 1)) - Vector3d::Ones(); // [-1, 1]^3
+        if (t.squaredNorm() <= 1)
+          X.push_back(f.centre + f.radius * t);
+      }
+  return X;
+}
+
 // Whether Q changes sign in f's ball and has the sign opposite to a decisive winding number (within
 // kDecisive of 0 or 1) at kWindingLeast or more lattice points of the ball (kWindingLattice^3
 // in its cube); side: the winding number's side there (inside when w > 1/2).
 bool contradicts_winding(const Points& pts, const LocalFit& f, double& side) {
   constexpr int kWindingLattice = 5, kWindingLeast = 2;
   constexpr double kDecisive = 0.05;
-  std::vector<Vector3d> lattice;
+  const std::vector<Vector3d> lattice = ball_lattice(f, kWindingLattice);
   std::vector<double> q;
-  for (int i = 0; i < kWindingLattice; ++i)
-    for (int j = 0; j < kWindingLattice; ++j)
-      for (int k = 0; k < kWindingLattice; ++k) {
-        const Vector3d t = Vector3d(i, j, k) * (2.0 / (kWindingLattice - 1)) - Vector3d::Ones();
-        if (t.squaredNorm() > 1)
-          continue;
-        lattice.push_back(f.centre + f.radius * t);
-        q.push_back(detail::fit_value(f, lattice.back(), nullptr));
-      }
+  for (const Vector3d& x : lattice)
+    q.push_back(detail::fit_value(f, x, nullptr));
   const auto [lo, hi] = std::minmax_element(q.begin(), q.end());
   if (*lo > 0 || *hi < 0)
     return false;
@@ -347,21 +354,14 @@ struct ExteriorVotes {
 
 ExteriorVotes exterior_votes(const detail::ExteriorGrid& g, const LocalFit& f) {
   ExteriorVotes v;
-  for (int i = 0; i < kExteriorLattice; ++i)
-    for (int j = 0; j < kExteriorLattice; ++j)
-      for (int k = 0; k < kExteriorLattice; ++k) {
-        const Vector3d t =
-            Vector3d(i, j, k) * (2.0 / (kExteriorLattice - 1)) - Vector3d::Ones(); // [-1, 1]^3
-        if (t.squaredNorm() > 1)
-          continue;
-        const Vector3d x = f.centre + f.radius * t;
-        const int side = detail::exterior_side(g, x);
-        const double q = detail::fit_value(f, x, nullptr);
-        (side < 0 ? v.inside : v.outside) += side != 0;
-        if (side == 0 || q == 0)
-          continue;
-        ((q > 0) == (side < 0) ? v.agree : v.disagree)++;
-      }
+  for (const Vector3d& x : ball_lattice(f, kExteriorLattice)) {
+    const int side = detail::exterior_side(g, x);
+    const double q = detail::fit_value(f, x, nullptr);
+    (side < 0 ? v.inside : v.outside) += side != 0;
+    if (side == 0 || q == 0)
+      continue;
+    ((q > 0) == (side < 0) ? v.agree : v.disagree)++;
+  }
   return v;
 }
 
