@@ -188,9 +188,11 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
   std::cout << "  octree       " << info.leaves << " leaves (" << info.two_sheet_leaves
             << " with two sheets, " << info.far_leaves << " far from the points, "
             << info.sign_fixed_leaves << " re-signed by the winding number, "
-            << info.exterior_negated_leaves << " negated to the flood fill's side), depth "
-            << info.depth << ", " << info.min_points << " points per fit"
-            << (info.flipped ? "; the normals pointed inward: F negated" : "") << "\n";
+            << info.exterior_negated_leaves << " negated to the flood fill's side; "
+            << info.exterior_split_cells + info.slab_split_cells
+            << " cells split at thin edges), depth " << info.depth << ", " << info.min_points
+            << " points per fit" << (info.flipped ? "; the normals pointed inward: F negated" : "")
+            << "\n";
   std::cout << "  fit          |F| / |grad F| at the points: rms " << fmt(info.rms_distance, 3)
             << ", max " << fmt(info.max_distance, 3) << "; " << fmt(100 * info.within_3_sigma, 4)
             << " % within 3 sigma\n";

@@ -102,6 +102,10 @@ struct CloudFitOptions {
   // (fit_cloud_implicit; info.exterior_negated_leaves), and on noisy scans cells whose fit
   // contradicts it in part are split (info.exterior_split_cells). False: the fits as they come.
   bool exterior_side = true;
+  // On noisy scans, a cell whose two sheets make a slab past a thin wall's edge (its mid-surface
+  // a point spacing or more from the points where the winding number says outside) is split
+  // (info.slab_split_cells). False: such slabs stay (up to a leaf's radius past the edge).
+  bool split_slabs = true;
   // Noisy scans (scan noise, given or estimate_scan_noise, at least kCleanScanNoise spacings):
   // the points are first moved onto local quadrics of up to 512 neighbours, each point's number
   // chosen by Lepski's method (smooth_scan_points); the octree, its leaves accepted and sized by
@@ -119,6 +123,7 @@ struct CloudFitInfo {
   long sign_fixed_leaves = 0;       // leaves whose fit had the wrong side: given the far plane
   long exterior_negated_leaves = 0; // leaves negated to the flood fill's side (exterior_side)
   long exterior_split_cells = 0;    // cells split where their fit contradicted the flood fill
+  long slab_split_cells = 0;        // cells split where their slab ran past a thin edge
   long sampled_splits = 0;          // cells split on every 16th point alone (their fit far off)
   int depth = 0;                    // deepest level reached
   double rms_distance = 0;          // over the input points: |F| / |grad F| (first-order distance)
@@ -175,7 +180,10 @@ struct CloudFitInfo {
 // before the octree, and on a noisy scan a cell whose fit has the wrong sign at 8 (and fewer
 // than 90 %) of those lattice points is split (info.exterior_split_cells; cells too sparse for a
 // fit of their own too): a thin wall's two sheets joined into a slab that runs on past the
-// wall's edge.
+// wall's edge. Slabs too thin for that lattice are found on their mid-surface
+// (options.split_slabs): on a noisy scan, a cell whose two sheets' slab has Q > 0, a point
+// spacing or more from the points, where the winding number is below 0.05 at 2 or more of 13^2
+// samples over its ball is split (info.slab_split_cells).
 // Before fitting, the normals' orientation is checked by the divergence theorem (sum of a_i n_i .
 // (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per point): inward normals
 // are flipped and info.flipped is set. Throws std::invalid_argument for a cloud without normals,
