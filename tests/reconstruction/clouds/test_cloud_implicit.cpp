@@ -72,6 +72,25 @@ WithAndWithoutFill fit_with_and_without_fill(const PointCloud& c, const Points3&
   return r;
 }
 
+// n points sampled (seed) by area from the capped mesh of the blade's loft S, each coordinate
+// moved by Gaussian noise sigma (noise_seed).
+Points3 noisy_blade_scan(const PiecewiseSurface& S, int n, unsigned seed, double sigma,
+                         unsigned noise_seed) {
+  SurfaceMeshOptions mo;
+  mo.nu = 600;
+  mo.nv = 150;
+  mo.cap = true;
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi T;
+  surface_mesh(S, mo, V, T);
+  Points3 P = sample_mesh(V, T, n, seed).points;
+  std::mt19937 rng(noise_seed);
+  std::normal_distribution<double> G(0, sigma);
+  for (Eigen::Index i = 0; i < P.rows(); ++i)
+    P.row(i) += Eigen::RowVector3d(G(rng), G(rng), G(rng));
+  return P;
+}
+
 // Whether the leaf's support ball holds a point of the index.
 bool ball_holds_a_point(const detail::NeighbourIndex& index, const LocalFit& leaf) {
   std::vector<int> nearest;
@@ -584,24 +603,13 @@ TEST_CASE(
   // 0.02 cm, 2.3 radii away, has Q > 0 where this test's winding number of the unsmoothed points is
   // below 0.02 at 2 lattice points.
   const PiecewiseSurface S = to_piecewise(loft_sections(test::rotor37()).surface);
-  SurfaceMeshOptions mo;
-  mo.nu = 600;
-  mo.nv = 150;
-  mo.cap = true;
-  Eigen::MatrixXd V;
-  Eigen::MatrixXi T;
-  surface_mesh(S, mo, V, T);
-  PointCloud scan = sample_mesh(V, T, 30000, 3);
-  std::mt19937 rng(10);
-  std::normal_distribution<double> G(0, 0.005);
+  const Points3 scan = noisy_blade_scan(S, 30000, 3, 0.005, 10);
   const Eigen::RowVector3d centre = evaluate(S, 0.25, 0.5).transpose();
   std::vector<Eigen::Index> keep;
-  for (Eigen::Index i = 0; i < scan.points.rows(); ++i) {
-    scan.points.row(i) += Eigen::RowVector3d(G(rng), G(rng), G(rng));
-    if ((scan.points.row(i) - centre).norm() > 0.75)
+  for (Eigen::Index i = 0; i < scan.rows(); ++i)
+    if ((scan.row(i) - centre).norm() > 0.75)
       keep.push_back(i);
-  }
-  const PointCloud c = prepare_cloud("blade", PointCloud{scan.points(keep, Eigen::all)});
+  const PointCloud c = prepare_cloud("blade", PointCloud{scan(keep, Eigen::all)});
   CloudFitInfo info;
   const CloudImplicit m = fit_cloud_implicit(c, {}, &info);
   REQUIRE(info.exterior_negated_leaves + info.exterior_split_cells == 0); // the fill is not used
@@ -754,19 +762,7 @@ TEST_CASE("cloud implicit: on a noisy scan, no slab of two sheets runs on past a
   // the fit). Measured: without the slab split the farthest lies 0.317 cm off and 158 lie beyond
   // 0.1 cm; with it 0.102 cm and 3 (the noise's own reach at the edges: 5 sigma).
   const PiecewiseSurface S = to_piecewise(loft_sections(test::rotor37()).surface);
-  SurfaceMeshOptions mo;
-  mo.nu = 600;
-  mo.nv = 150;
-  mo.cap = true;
-  Eigen::MatrixXd V;
-  Eigen::MatrixXi T;
-  surface_mesh(S, mo, V, T);
-  PointCloud scan = sample_mesh(V, T, 50000, 4);
-  std::mt19937 rng(11);
-  std::normal_distribution<double> G(0, 0.02);
-  for (Eigen::Index i = 0; i < scan.points.rows(); ++i)
-    scan.points.row(i) += Eigen::RowVector3d(G(rng), G(rng), G(rng));
-  const PointCloud c = prepare_cloud("blade", PointCloud{scan.points});
+  const PointCloud c = prepare_cloud("blade", PointCloud{noisy_blade_scan(S, 50000, 4, 0.02, 11)});
   CloudFitOptions o;
   CloudFitInfo on, off;
   const ImplicitFunction F =
