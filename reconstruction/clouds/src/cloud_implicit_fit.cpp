@@ -303,10 +303,9 @@ bool contradicts_winding(const Points& pts, const LocalFit& f, double& side) {
 // spacings from the points and has a decisive outside winding number at kWindingLeast samples
 // or more. Such slabs are razor-thin (0.001 to 0.02 cm past the sigma 0.02 blade's edges, where
 // the lattices of contradicts_winding and the flood fill miss them) and reach up to the ball's
-// radius past the edge (0.44 cm). Measured on 17 blade and valve clouds (docs/benchmarks.md,
+// radius past the edge (0.44 cm). Measured on 18 blade and valve clouds (docs/benchmarks.md,
 // "Slabs past thin edges on the winding number"): 13^2 samples at 1 spacing beat 9^2 at 1.5 or
 // 2 by up to 1.5 %; 17^2 left a blob off a 30,000-point blade's hub corner.
-constexpr double kSignSpacings = 2;
 bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, const LocalFit& f) {
   constexpr int kSlabGrid = 13;
   constexpr double kSlabSpacings = 1;
@@ -314,7 +313,6 @@ bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, cons
     return false;
   const HeightSheet& s0 = f.sheet[0];
   const Vector3d l = s0.frame * (f.centre - s0.origin);
-  const auto& c = s0.c;
   std::vector<int> idx;
   std::vector<double> d2;
   int outside = 0;
@@ -324,8 +322,8 @@ bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, cons
       if (a * a + b * b > 1)
         continue;
       const double u = l(0) + a * f.radius, v = l(1) + b * f.radius;
-      const double h = (c[0] * u + c[1] * v + c[3]) * u + (c[2] * v + c[4]) * v + c[5];
-      const Vector3d x0 = s0.origin + s0.frame.transpose() * Vector3d(u, v, h);
+      const Vector3d x0 =
+          s0.origin + s0.frame.transpose() * Vector3d(u, v, detail::sheet_height(s0, u, v));
       Vector3d g;
       const double q1 = detail::sheet_value(f.sheet[1], x0, &g);
       if (!(q1 > 0) || !(g.norm() > 0))
@@ -361,6 +359,7 @@ bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, cons
 // blob, 0.14 between the blade's faces at the patch's centre), it takes the far plane on the
 // winding number's side. Returns true when it did either.
 bool check_sign(const Points& pts, const detail::NeighbourIndex& index, bool no_fill, LocalFit& f) {
+  constexpr double kSignSpacings = 2;
   std::vector<int> idx;
   std::vector<double> d2;
   index.knn(f.centre, 1, idx, d2);

@@ -34,6 +34,12 @@ inline double wendland(double r) {
   return a * a * (4 * r + 1);
 }
 
+// The sheet's height h(u, v) = c0 u^2 + c1 u v + c2 v^2 + c3 u + c4 v + c5 over its tangent plane.
+[[gnu::always_inline]] inline double sheet_height(const HeightSheet& s, double u, double v) {
+  const auto& c = s.c;
+  return (c[0] * u + c[1] * v + c[3]) * u + (c[2] * v + c[4]) * v + c[5];
+}
+
 // Q = h(u, v) - w of one sheet, and its gradient when g is not null.
 [[gnu::always_inline]] inline double sheet_value(const HeightSheet& s, const Eigen::Vector3d& x,
                                                  Eigen::Vector3d* g) {
@@ -41,7 +47,7 @@ inline double wendland(double r) {
   const Eigen::Vector3d l = s.frame * d; // (u, v, w)
   const double u = l(0), v = l(1);
   const auto& c = s.c;
-  const double h = (c[0] * u + c[1] * v + c[3]) * u + (c[2] * v + c[4]) * v + c[5];
+  const double h = sheet_height(s, u, v);
   if (g) {
     const double hu = 2 * c[0] * u + c[1] * v + c[3], hv = c[1] * u + 2 * c[2] * v + c[4];
     *g = s.frame.transpose() * Eigen::Vector3d(hu, hv, -1.0);

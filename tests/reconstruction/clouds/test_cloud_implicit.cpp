@@ -617,9 +617,7 @@ TEST_CASE(
   const Eigen::VectorXd area =
       detail::point_areas(c.points, index.knn_all(detail::kAreaNeighbours, 1));
   const detail::WindingNumber winding(c.points, c.normals, area);
-  std::vector<double> a(area.data(), area.data() + area.size());
-  std::nth_element(a.begin(), a.begin() + long(a.size() / 2), a.end());
-  const double spacing = std::sqrt(a[a.size() / 2]); // 0.05 cm
+  const double spacing = detail::median_spacing(area); // 0.05 cm
   long empty = 0, sign_changes = 0, contradicted = 0;
   for (const LocalFit& leaf : m.fits) {
     std::vector<int> nearest;
