@@ -117,7 +117,7 @@ std::vector<Eigen::Vector3d> ball_lattice(const LocalFit& leaf, int n) {
 } // namespace
 
 TEST_CASE("cloud implicit: zero set within the noise of sphere, torus and thin ellipsoid",
-          "[clouds][implicit]") {
+          "[clouds][implicit][heavy]") {
   // Bound (measured margins 1.5x to 2x over the 18 cases): the zero set's rms distance to the
   // truth at the mesh vertices is at most kRms sigma (the fits average 20 to 80 points: measured
   // 0.3 to 0.55 sigma) plus the noise-free error, which falls like spacing^2 (measured 0.08 to
@@ -225,7 +225,8 @@ TEST_CASE("cloud implicit: a model that does not tile its cube is refused", "[cl
   CHECK_THROWS_AS(fit_cloud_implicit(PointCloud{c.points}, {}), std::invalid_argument);
 }
 
-TEST_CASE("cloud implicit: no spurious sheets beside and beyond thin walls", "[clouds][implicit]") {
+TEST_CASE("cloud implicit: no spurious sheets beside and beyond thin walls",
+          "[clouds][implicit][heavy]") {
   // Ellipsoids 0.1, 0.04 and 0.02 thick (semi-axes 1, 0.6, c) with rims of radius c^2 = 0.0025
   // to 0.0001 (blade edges): the tangent planes of both sides say "inside" past the rim, where
   // far cells used to put zero sheets (docs/benchmarks.md, run 1). A spurious sheet is measured
@@ -449,7 +450,7 @@ PointCloud slab_cloud(int n, double sigma, unsigned seed) {
 } // namespace
 
 TEST_CASE("cloud implicit: coarse cells split on a sample give the full fits' model",
-          "[clouds][implicit]") {
+          "[clouds][implicit][heavy]") {
   // Cells whose fit ball holds 256 or more of every 16th point are split on those alone when
   // their fit misses them by more than 4 x the acceptance rms (info.sampled_splits). The claim:
   // the model is the one full fits give. The slab's faces are planes that cells of 4,000 points
@@ -540,7 +541,7 @@ TEST_CASE("cloud implicit: leaves of wrong normals at a thin rim are negated to 
 }
 
 TEST_CASE("cloud implicit: leaves off the surface keep the flood fill's side over their ball",
-          "[clouds][implicit]") {
+          "[clouds][implicit][heavy]") {
   // A leaf whose support ball holds no point, on a trusted flood fill that labels the ball's
   // lattice points all one side, is off the surface; its Q must have that side's sign there.
   // Before far and gap leaves were checked against the fill, their side came from the winding
@@ -680,7 +681,7 @@ TEST_CASE("cloud implicit: a clean cloud's fits are held to its scan noise, not 
 
 TEST_CASE("cloud implicit: on a noisy scan, cells whose fit contradicts the flood fill in part are "
           "split, clean clouds are not",
-          "[clouds][implicit]") {
+          "[clouds][implicit][heavy]") {
   // The two faces z = +-0.015 of the plate [-1, 1] x [-0.6, 0.6] (a spacing apart, one band of
   // the fill's shell), no points on its rim: each face fits as a plane, a cell over the rim joins
   // them into a slab that runs on past it, and the scan's noise (half a spacing) keeps such cells
@@ -752,7 +753,7 @@ double farthest_off_caps(const ImplicitFunction& F, const PiecewiseSurface& S, d
 }
 
 TEST_CASE("cloud implicit: on a noisy scan, no slab of two sheets runs on past a thin edge",
-          "[clouds][implicit]") {
+          "[clouds][implicit][heavy]") {
   // The Rotor 37 blade (its capped loft), 50,000 points, noise 0.02 cm. Two sheets joined into
   // a razor-thin slab (0.001 to 0.02 cm thick) ran on past the blade's edges up to a leaf's
   // radius: a fin of F > 0 whose mesh reached up to 0.44 cm off the truth (bench_clouds, 100,000

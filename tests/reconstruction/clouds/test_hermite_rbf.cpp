@@ -81,7 +81,8 @@ TEST_CASE("hermite rbf: the gradient is the derivative of the value", "[clouds][
   }
 }
 
-TEST_CASE("hermite rbf: sign, accuracy and convergence order on sparse clouds", "[clouds][hrbf]") {
+TEST_CASE("hermite rbf: sign, accuracy and convergence order on sparse clouds",
+          "[clouds][hrbf][heavy]") {
   for (const test::Shape shape :
        {test::Shape::sphere, test::Shape::torus, test::Shape::ellipsoid}) {
     const test::SampledShape truth{shape};

@@ -91,7 +91,7 @@ TEST_CASE("Section body: sign agrees with ray parity on the capped loft mesh", "
   }
 }
 
-TEST_CASE("Section body: |omega| / delta in [0.9, 1.1] on normal offsets", "[implicit]") {
+TEST_CASE("Section body: |omega| / delta in [0.9, 1.1] on normal offsets", "[implicit][heavy]") {
   for (size_t k = 0; k < test::blade_families().size(); ++k) {
     const test::BladeFamily fam = test::blade_families()[k];
     const SectionBodyBuild& b = family(k);

@@ -17,7 +17,7 @@ using Eigen::VectorXd;
 using test::body_section;
 using test::rotor37;
 
-TEST_CASE("Rotor 37: the surface reproduces all 2574 input points to round-off", "[loft]") {
+TEST_CASE("Rotor 37: the surface reproduces all 2574 input points to round-off", "[loft][heavy]") {
   for (StartAlign align : {StartAlign::first, StartAlign::leading_edge, StartAlign::trailing_edge})
     for (Correspondence m : {Correspondence::automatic, Correspondence::arc_length}) {
       LoftOptions o;

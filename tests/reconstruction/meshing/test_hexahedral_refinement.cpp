@@ -408,7 +408,7 @@ TEST_CASE("adapt_hexahedra: body (11), default hexahedra, two passes at a peak n
 }
 
 TEST_CASE("refine_hexahedra: the impeller's default hexahedra, one pass on F",
-          "[volume][adapt][hex]") {
+          "[volume][adapt][hex][heavy]") {
   // The pillow layer is nearly flat at creases (min scaled Jacobian 2e-13): the trilinear map of
   // such a parent folds some children (at their corners, or only at their centres), which the
   // untangling opens; boundary nodes whose full projection would fold a thin child are held

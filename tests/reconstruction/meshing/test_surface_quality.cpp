@@ -63,7 +63,7 @@ Eigen::VectorXd face_min_angles(const Eigen::MatrixXd& V, const Eigen::MatrixXi&
 }
 
 TEST_CASE("smooth_on_surface: the angle floor keeps slivers out at the seed rule's fit",
-          "[quality]") {
+          "[quality][heavy]") {
   // Creased bodies (R0 cube, seed 003's body (11)) at two grids each. The seed's rule (floor 0)
   // leaves faces below 5 deg where vertices crowd onto a crease (measured: 0.06-3.9 deg); the
   // floor refuses every descent move that takes a face from above the floor to below it or

@@ -212,7 +212,7 @@ TEST_CASE("volume_mesh: BCC tetrahedra of smooth bodies keep their dihedral angl
   }
 }
 
-TEST_CASE("volume_mesh: the volume converges at second order (sphere, torus)", "[volume]") {
+TEST_CASE("volume_mesh: the volume converges at second order (sphere, torus)", "[volume][heavy]") {
   const double pi = 3.14159265358979323846;
   const struct {
     ImplicitFunction f;
@@ -261,7 +261,8 @@ TEST_CASE("volume_mesh: the same mesh for any thread count", "[volume]") {
   }
 }
 
-TEST_CASE("volume_mesh: shipped models give the same mesh on 1, 2 and 3 threads", "[volume]") {
+TEST_CASE("volume_mesh: shipped models give the same mesh on 1, 2 and 3 threads",
+          "[volume][heavy]") {
   // Every stage split over sub-boxes, batches or colour classes (issue 14): thin blades, fins and
   // seams exercise the cut pieces, the projected layer's holds, the pillows' untangling and the
   // coverage; nodes, elements, boundary and report must match element for element.
