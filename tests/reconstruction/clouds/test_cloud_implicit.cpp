@@ -423,10 +423,8 @@ TEST_CASE("cloud implicit: 10 points per fit on clean clouds, and no dents in sa
 
 namespace {
 
-// n points uniform by area on the box [-1, 1] x [-1, 1] x [-0.1, 0.1] (its faces are planes
-// that coarse cells can fit within the noise), exact outward normals, Gaussian noise sigma.
-PointCloud slab_cloud(int n, double sigma, unsigned seed) {
-  const Eigen::Vector3d h(1, 1, 0.1);
+// n points uniform by area on the box [-h, h], exact outward normals, Gaussian noise sigma.
+PointCloud box_cloud(const Eigen::Vector3d& h, int n, double sigma, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-1, 1);
   std::normal_distribution<double> G(0, sigma);
@@ -445,6 +443,12 @@ PointCloud slab_cloud(int n, double sigma, unsigned seed) {
       c.points(i, k) += G(rng);
   }
   return c;
+}
+
+// The box [-1, 1] x [-1, 1] x [-0.1, 0.1]: its faces are planes that coarse cells can fit
+// within the noise.
+PointCloud slab_cloud(int n, double sigma, unsigned seed) {
+  return box_cloud(Eigen::Vector3d(1, 1, 0.1), n, sigma, seed);
 }
 
 } // namespace
@@ -780,4 +784,59 @@ TEST_CASE("cloud implicit: on a noisy scan, no slab of two sheets runs on past a
   CHECK(farthest_off > 0.25);
   CHECK(farthest < 0.15);
   CHECK(far * 10 < far_off);
+}
+
+namespace {
+
+// Signed distance to the box [-h, h], positive inside.
+double box_distance(const Eigen::Vector3d& h, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = p.cwiseAbs() - h;
+  return -(q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0));
+}
+
+// Whether p lies within `reach` of two of the box's faces' planes: near an edge.
+bool near_box_edge(const Eigen::Vector3d& h, const Eigen::Vector3d& p, double reach) {
+  return ((p.cwiseAbs() - h).array().abs() < reach).count() >= 2;
+}
+
+} // namespace
+
+TEST_CASE("cloud implicit: edge sheets keep a box's edges sharp", "[clouds][implicit]") {
+  // One quadric across a 90-degree edge rounds it by up to the acceptance's misfit; edge sheets
+  // (CloudFitOptions::edge_sheets) join the two faces' sheets there. The mean distance of the
+  // default mesh's vertices to the box near its edges (within 3 spacings of two faces) and
+  // elsewhere, with and without edge sheets, 12,000 points, clean and with noise 0.3 spacings.
+  // Measured near edges 0.51 x (clean) and 0.61 x (noisy) the quadrics' distance, bound 0.7 x;
+  // elsewhere 0.72 x and 0.94 x, bound 1 x (no worse).
+  const Eigen::Vector3d h(0.5, 0.4, 0.3);
+  for (const double sigma : {0.0, 0.005}) {
+    const PointCloud c = box_cloud(h, 12000, sigma, sigma > 0 ? 62 : 61);
+    double edge[2] = {0, 0}, rest[2] = {0, 0};
+    CloudFitInfo info[2];
+    for (int k = 0; k < 2; ++k) {
+      CloudFitOptions o;
+      o.edge_sheets = k == 1;
+      const auto model = std::make_shared<CloudImplicit>(fit_cloud_implicit(c, o, &info[k]));
+      ImplicitMeshOptions mo;
+      mo.cell = info[k].spacing / 2; // the default cell (default_mesh_cell)
+      Eigen::MatrixXd V;
+      Eigen::MatrixXi T;
+      implicit_mesh(cloud_implicit_function(model), mo, V, T);
+      long ne = 0, nr = 0;
+      for (Eigen::Index i = 0; i < V.rows(); ++i) {
+        const Eigen::Vector3d p = V.row(i).transpose();
+        const double d = std::abs(box_distance(h, p));
+        if (near_box_edge(h, p, 3 * info[k].spacing))
+          edge[k] += d, ++ne;
+        else
+          rest[k] += d, ++nr;
+      }
+      edge[k] /= double(ne);
+      rest[k] /= double(nr);
+    }
+    INFO("sigma " << sigma << " spacing " << info[1].spacing << ": near edges " << edge[0] << " -> "
+                  << edge[1] << ", elsewhere " << rest[0] << " -> " << rest[1]);
+    CHECK(edge[1] <= 0.7 * edge[0]);
+    CHECK(rest[1] <= 1.0 * rest[0]);
+  }
 }

@@ -111,6 +111,11 @@ struct CloudFitOptions {
   // chosen by Lepski's method (smooth_scan_points); the octree, its leaves accepted and sized by
   // the scan noise as without smoothing, fits the moved points. False: the points as they come.
   bool smooth_points = true;
+  // Edge sheets (Ohtake et al. 2003): a cell whose quadric would round a sharp edge (its normals
+  // in two groups 20 degrees or more apart, each with a tenth of the weight) takes the R-function
+  // join of the groups' sheets when that misses its points by at most 0.9 times the quadric's rms.
+  // False: one quadric wherever the normals lie within 60 degrees of their mean.
+  bool edge_sheets = true;
   int threads = 0; // 0: all cores
   // Progress lines (one per octree level); called from the calling thread.
   std::function<void(const std::string&)> progress;
