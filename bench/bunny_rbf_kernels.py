@@ -117,7 +117,8 @@ def main():
     lo, hi = P0.min(0), P0.max(0)
     diag = np.linalg.norm(hi - lo)
     P = (P0 - (lo + hi) / 2) / (diag / 2)  # the unit ball, as fit_hermite_rbf
-    rows = [("r3", 1, {}), ("r5", 1, {}), ("gauss", 4, {}), ("imq", 3, {}), ("mq", 3, {}),
+    rows = [("r3", 1, {}), ("r5", 1, {}), ("gauss", 1, {}), ("gauss", 2, {}), ("gauss", 4, {}),
+            ("imq", 1, {}), ("imq", 3, {}), ("mq", 1, {}), ("mq", 3, {}),
             ("wendland", 1, {}), ("wendland", 2, {}), ("r3", 1, {"lam": 1e-5}),
             ("r3", 1, {"lam": 1e-4}), ("r3", 1, {"lam": 1e-3}),
             ("r3", 1, {"lam": 1e-12, "lam_g": 1e-3}), ("r3", 1, {"lam": 1e-12, "lam_g": 1e-2})]
