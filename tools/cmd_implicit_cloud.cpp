@@ -184,7 +184,8 @@ void unstructured(const std::string& input, PointCloud& c, const CloudPrepOption
   if (info.smoothed_points > 0)
     std::cout << "  smoothing    " << info.smoothed_points
               << " points moved onto local quadrics (median " << info.smoothing_neighbours
-              << " neighbours, scan noise " << fmt(info.smoothing_noise, 3) << ")\n";
+              << " neighbours, " << info.smoothed_on_edges << " onto edge sheets, scan noise "
+              << fmt(info.smoothing_noise, 3) << ")\n";
   std::cout << "  octree       " << info.leaves << " leaves (" << info.two_sheet_leaves
             << " with two sheets, " << info.far_leaves << " far from the points, "
             << info.sign_fixed_leaves << " re-signed by the winding number, "

@@ -128,20 +128,20 @@ void bind_cloud_steps(py::module_& m) {
         "clamped to [k_min, k_max].");
   m.def(
       "smooth_scan_points",
-      [](const MatrixX3d& P, const MatrixX3d& N, double sigma, int k_max, double kappa,
+      [](const MatrixX3d& P, const MatrixX3d& N, double sigma, int k_max, double kappa, bool edges,
          int threads) {
         SmoothedPoints s;
         {
           py::gil_scoped_release release;
-          s = smooth_scan_points(P, N, sigma, k_max, kappa, threads);
+          s = smooth_scan_points(P, N, sigma, k_max, kappa, edges, threads);
         }
         return py::make_tuple(std::move(s.P), std::move(s.N), std::move(s.k));
       },
       py::arg("P"), py::arg("N"), py::arg("sigma"), py::arg("k_max") = 512, py::arg("kappa") = 1.5,
-      py::arg("threads") = 0,
+      py::arg("edges") = true, py::arg("threads") = 0,
       "Noisy points P (N, 3) with oriented normals N moved onto local quadrics of 16, 32, ..., "
-      "k_max neighbours, the number chosen per point by Lepski's method at noise sigma -> (P, N, "
-      "k).");
+      "k_max neighbours, the number chosen per point by Lepski's method at noise sigma, or onto "
+      "the join of two quadrics at a sharp edge (edges) -> (P, N, k).");
   m.def(
       "prepare_cloud",
       [](const PointCloud& cloud, const std::string& path, int outlier_neighbours,
@@ -230,6 +230,7 @@ py::dict cloud_fit_dict(const CloudFitInfo& i) {
       field("min_points", &CloudFitInfo::min_points),
       field("acceptance", &CloudFitInfo::acceptance),
       field("smoothed_points", &CloudFitInfo::smoothed_points),
+      field("smoothed_on_edges", &CloudFitInfo::smoothed_on_edges),
       field("smoothing_noise", &CloudFitInfo::smoothing_noise),
       field("smoothing_neighbours", &CloudFitInfo::smoothing_neighbours));
 }

@@ -1,11 +1,13 @@
 #pragma once
 // Point clouds sampled from closed surfaces with known geometry, for the cloud -> implicit tests:
 // points uniform by area, exact outward normals, optional Gaussian noise, and the exact signed
-// distance (positive inside) of the sphere, torus and ellipsoid-like bodies where it is known.
+// distance (positive inside) of the sphere, torus and ellipsoid-like bodies where it is known;
+// boxes, whose edges are sharp.
 
 #include "interlin/reconstruction/clouds/point_cloud.h"
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -85,6 +87,39 @@ inline PointCloud sample_shape(const SampledShape& s, int n, double sigma, unsig
     ++i;
   }
   return c;
+}
+
+// n points uniform by area on the box [-h, h], exact outward normals, Gaussian noise sigma.
+inline PointCloud box_cloud(const Eigen::Vector3d& h, int n, double sigma, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::normal_distribution<double> G(0, sigma);
+  const double area[3] = {h(1) * h(2), h(0) * h(2), h(0) * h(1)}; // per face of each axis / 4
+  PointCloud c;
+  c.points.resize(n, 3);
+  c.normals.setZero(n, 3);
+  for (int i = 0; i < n; ++i) {
+    double t = 0.5 * (U(rng) + 1) * (area[0] + area[1] + area[2]);
+    const int a = t < area[0] ? 0 : t < area[0] + area[1] ? 1 : 2;
+    const double side = U(rng) < 0 ? -1 : 1;
+    for (int k = 0; k < 3; ++k)
+      c.points(i, k) = k == a ? side * h(k) : U(rng) * h(k);
+    c.normals(i, a) = side;
+    for (int k = 0; k < 3 && sigma > 0; ++k)
+      c.points(i, k) += G(rng);
+  }
+  return c;
+}
+
+// Signed distance to the box [-h, h], positive inside.
+inline double box_distance(const Eigen::Vector3d& h, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = p.cwiseAbs() - h;
+  return -(q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0));
+}
+
+// Whether p lies within `reach` of two of the box's faces' planes: near an edge.
+inline bool near_box_edge(const Eigen::Vector3d& h, const Eigen::Vector3d& p, double reach) {
+  return ((p.cwiseAbs() - h).array().abs() < reach).count() >= 2;
 }
 
 } // namespace interlin::test

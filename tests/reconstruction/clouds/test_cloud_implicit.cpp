@@ -423,32 +423,10 @@ TEST_CASE("cloud implicit: 10 points per fit on clean clouds, and no dents in sa
 
 namespace {
 
-// n points uniform by area on the box [-h, h], exact outward normals, Gaussian noise sigma.
-PointCloud box_cloud(const Eigen::Vector3d& h, int n, double sigma, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> U(-1, 1);
-  std::normal_distribution<double> G(0, sigma);
-  const double area[3] = {h(1) * h(2), h(0) * h(2), h(0) * h(1)}; // per face of each axis / 4
-  PointCloud c;
-  c.points.resize(n, 3);
-  c.normals.setZero(n, 3);
-  for (int i = 0; i < n; ++i) {
-    double t = 0.5 * (U(rng) + 1) * (area[0] + area[1] + area[2]);
-    const int a = t < area[0] ? 0 : t < area[0] + area[1] ? 1 : 2;
-    const double side = U(rng) < 0 ? -1 : 1;
-    for (int k = 0; k < 3; ++k)
-      c.points(i, k) = k == a ? side * h(k) : U(rng) * h(k);
-    c.normals(i, a) = side;
-    for (int k = 0; k < 3 && sigma > 0; ++k)
-      c.points(i, k) += G(rng);
-  }
-  return c;
-}
-
 // The box [-1, 1] x [-1, 1] x [-0.1, 0.1]: its faces are planes that coarse cells can fit
 // within the noise.
 PointCloud slab_cloud(int n, double sigma, unsigned seed) {
-  return box_cloud(Eigen::Vector3d(1, 1, 0.1), n, sigma, seed);
+  return test::box_cloud(Eigen::Vector3d(1, 1, 0.1), n, sigma, seed);
 }
 
 } // namespace
@@ -762,8 +740,10 @@ TEST_CASE("cloud implicit: on a noisy scan, no slab of two sheets runs on past a
   // a razor-thin slab (0.001 to 0.02 cm thick) ran on past the blade's edges up to a leaf's
   // radius: a fin of F > 0 whose mesh reached up to 0.44 cm off the truth (bench_clouds, 100,000
   // points). The mesh's vertices off the caps, measured by project_to_surface (independent of
-  // the fit). Measured: without the slab split the farthest lies 0.317 cm off and 158 lie beyond
-  // 0.1 cm; with it 0.102 cm and 3 (the noise's own reach at the edges: 5 sigma).
+  // the fit). Measured: without the slab split the farthest lies 0.237 cm off and 72 lie beyond
+  // 0.1 cm; with it 0.099 cm and 0 (the noise's own reach at the edges: 5 sigma). (Before two
+  // sheets' misfit was measured by the sheet that decides the join, session 31: 0.317 cm and 158
+  // without the split, 0.102 cm and 3 with it.)
   const PiecewiseSurface S = to_piecewise(loft_sections(test::rotor37()).surface);
   const PointCloud c = prepare_cloud("blade", PointCloud{noisy_blade_scan(S, 50000, 4, 0.02, 11)});
   CloudFitOptions o;
@@ -781,36 +761,22 @@ TEST_CASE("cloud implicit: on a noisy scan, no slab of two sheets runs on past a
                           << far_off);
   CHECK(off.slab_split_cells == 0);
   CHECK(on.slab_split_cells > 0);
-  CHECK(farthest_off > 0.25);
+  CHECK(farthest_off > 0.2);
   CHECK(farthest < 0.15);
   CHECK(far * 10 < far_off);
 }
-
-namespace {
-
-// Signed distance to the box [-h, h], positive inside.
-double box_distance(const Eigen::Vector3d& h, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d q = p.cwiseAbs() - h;
-  return -(q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0));
-}
-
-// Whether p lies within `reach` of two of the box's faces' planes: near an edge.
-bool near_box_edge(const Eigen::Vector3d& h, const Eigen::Vector3d& p, double reach) {
-  return ((p.cwiseAbs() - h).array().abs() < reach).count() >= 2;
-}
-
-} // namespace
 
 TEST_CASE("cloud implicit: edge sheets keep a box's edges sharp", "[clouds][implicit]") {
   // One quadric across a 90-degree edge rounds it by up to the acceptance's misfit; edge sheets
   // (CloudFitOptions::edge_sheets) join the two faces' sheets there. The mean distance of the
   // default mesh's vertices to the box near its edges (within 3 spacings of two faces) and
   // elsewhere, with and without edge sheets, 12,000 points, clean and with noise 0.3 spacings.
-  // Measured near edges 0.51 x (clean) and 0.61 x (noisy) the quadrics' distance, bound 0.7 x;
-  // elsewhere 0.72 x and 0.94 x, bound 1 x (no worse).
+  // Off, the noisy box's smoothing rounds the edges too (its edge projection follows the same
+  // option). Measured near edges 0.51 x (clean) and 0.63 x (noisy) the quadrics' distance, bound
+  // 0.7 x; elsewhere 0.72 x and 0.94 x, bound 1 x (no worse).
   const Eigen::Vector3d h(0.5, 0.4, 0.3);
   for (const double sigma : {0.0, 0.005}) {
-    const PointCloud c = box_cloud(h, 12000, sigma, sigma > 0 ? 62 : 61);
+    const PointCloud c = test::box_cloud(h, 12000, sigma, sigma > 0 ? 62 : 61);
     double edge[2] = {0, 0}, rest[2] = {0, 0};
     CloudFitInfo info[2];
     for (int k = 0; k < 2; ++k) {
@@ -825,8 +791,8 @@ TEST_CASE("cloud implicit: edge sheets keep a box's edges sharp", "[clouds][impl
       long ne = 0, nr = 0;
       for (Eigen::Index i = 0; i < V.rows(); ++i) {
         const Eigen::Vector3d p = V.row(i).transpose();
-        const double d = std::abs(box_distance(h, p));
-        if (near_box_edge(h, p, 3 * info[k].spacing))
+        const double d = std::abs(test::box_distance(h, p));
+        if (test::near_box_edge(h, p, 3 * info[k].spacing))
           edge[k] += d, ++ne;
         else
           rest[k] += d, ++nr;

@@ -2,6 +2,7 @@
 // its use by fit_cloud_implicit on noisy scans.
 
 #include "interlin/reconstruction/clouds/cloud_implicit.h"
+#include "interlin/reconstruction/clouds/prepare_cloud.h"
 #include "interlin/reconstruction/clouds/smooth_scan_points.h"
 
 #include "support/test_clouds.h"
@@ -175,4 +176,55 @@ TEST_CASE("fit_cloud_implicit smooths noisy scans only, and the fit comes closer
   CloudFitInfo clean;
   fit_cloud_implicit(test::sample_shape(torus, 20000, 0, 8), CloudFitOptions{}, &clean);
   CHECK(clean.smoothed_points == 0);
+}
+
+TEST_CASE("smooth_scan_points: near a box's edges the points move onto its faces, not a rounding",
+          "[clouds][smooth]") {
+  // Normals estimated from a scan turn across an edge over a few spacings, so the quadric of a
+  // point near a 90-degree edge takes in points of the other face and rounds it; the edge
+  // projection moves such points onto the join of the two faces' quadrics. Mean distance to the
+  // box of the moved points within 3 spacings of an edge and elsewhere, with and without it;
+  // 30,000 points, noise 0.45 spacings, normals as `interlin implicit` prepares them. Measured
+  // near edges 0.00165 against 0.00184 (0.90 x; the input 0.0039), bound 0.95 x; elsewhere
+  // 1.008 x (points up to 4 spacings from an edge take edge sheets), bound 1.02 x; 4,238 points
+  // of the 5,013 near edges moved onto edge sheets.
+  const Eigen::Vector3d h(0.5, 0.4, 0.3);
+  const double sigma = 0.005, spacing = std::sqrt(8 * (0.2 + 0.15 + 0.12) / 30000.0);
+  const PointCloud c =
+      prepare_cloud("box", PointCloud{test::box_cloud(h, 30000, sigma, 71).points});
+  SmoothedPoints s[2];
+  double edge[3] = {0, 0, 0}, rest[3] = {0, 0, 0}; // on, off, the input
+  for (int k = 0; k < 2; ++k)
+    s[k] = smooth_scan_points(c.points, c.normals, sigma, 512, 1.5, k == 0, 1);
+  long ne = 0, nr = 0;
+  for (Eigen::Index i = 0; i < c.points.rows(); ++i) {
+    const Eigen::Vector3d p = c.points.row(i).transpose();
+    const bool near = test::near_box_edge(h, p, 3 * spacing);
+    (near ? ne : nr) += 1;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d q = k < 2 ? Eigen::Vector3d(s[k].P.row(i).transpose()) : p;
+      (near ? edge[k] : rest[k]) += std::abs(test::box_distance(h, q));
+    }
+  }
+  for (int k = 0; k < 3; ++k)
+    edge[k] /= double(ne), rest[k] /= double(nr);
+  INFO("near edges (" << ne << " points): input " << edge[2] << ", rounded " << edge[1]
+                      << ", edge sheets " << edge[0] << "; elsewhere input " << rest[2]
+                      << ", rounded " << rest[1] << ", edge sheets " << rest[0] << "; "
+                      << s[0].on_edges << " points onto edge sheets");
+  CHECK(s[1].on_edges == 0);
+  CHECK(s[0].on_edges > ne / 2);
+  CHECK(edge[0] <= 0.95 * edge[1]);
+  CHECK(rest[0] <= 1.02 * rest[1]);
+}
+
+TEST_CASE("smooth_scan_points: smooth bodies take no edge sheets", "[clouds][smooth]") {
+  // The sphere's and the torus's normals turn smoothly: the edge projection leaves them to the
+  // quadrics (measured: no point on either).
+  for (const test::Shape shape : {test::Shape::sphere, test::Shape::torus}) {
+    const PointCloud c = test::sample_shape(test::SampledShape{shape}, 30000, 0.003, 72);
+    const SmoothedPoints s = smooth_scan_points(c.points, c.normals, 0.003, 512, 1.5, true, 1);
+    INFO("shape " << int(shape) << ": " << s.on_edges << " points onto edge sheets");
+    CHECK(s.on_edges == 0);
+  }
 }

@@ -113,8 +113,9 @@ struct CloudFitOptions {
   bool smooth_points = true;
   // Edge sheets (Ohtake et al. 2003): a cell whose quadric would round a sharp edge (its normals
   // in two groups 20 degrees or more apart, each with a tenth of the weight) takes the R-function
-  // join of the groups' sheets when that misses its points by at most 0.9 times the quadric's rms.
-  // False: one quadric wherever the normals lie within 60 degrees of their mean.
+  // join of the groups' sheets when that misses its points by at most 0.9 times the quadric's rms;
+  // a noisy scan's smoothing moves such points onto the join likewise (smooth_scan_points).
+  // False: one quadric wherever the normals lie within 60 degrees of their mean, in both.
   bool edge_sheets = true;
   int threads = 0; // 0: all cores
   // Progress lines (one per octree level); called from the calling thread.
@@ -143,8 +144,9 @@ struct CloudFitInfo {
   double acceptance = 1; // multiple of the acceptance thresholds used
   // smooth_points: the points moved (0: not smoothed), the scan noise of the input that the
   // smoothing used (then also noise and scan_noise: the octree's sigma), the median number of
-  // neighbours chosen. rms_distance .. within_3_sigma are measured at the input points.
-  long smoothed_points = 0;
+  // neighbours chosen, the points moved onto edge sheets. rms_distance .. within_3_sigma are
+  // measured at the input points.
+  long smoothed_points = 0, smoothed_on_edges = 0;
   double smoothing_noise = 0;
   int smoothing_neighbours = 0;
 };

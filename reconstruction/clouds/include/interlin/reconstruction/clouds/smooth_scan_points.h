@@ -8,6 +8,7 @@ namespace interlin {
 struct SmoothedPoints {
   Eigen::MatrixX3d P, N; // the moved points and their normals (#P by 3)
   Eigen::VectorXi k;     // the neighbourhood size chosen at each point (0: the point kept)
+  long on_edges = 0;     // points moved onto edge sheets (edges)
 };
 
 // Local quadric projection with a bandwidth chosen point by point (Lepski's method: Lepski,
@@ -25,13 +26,21 @@ struct SmoothedPoints {
 // moved along its anchor's normal onto the quadric of its nearest anchor on the same
 // sheet when that quadric holds at least 128 points and reaches 4 times the distance, and gets
 // its own rungs otherwise (near edges and thin walls, where the rungs stop early).
+// Edges (after Fleishman, Cohen-Or & Silva 2005, "Robust moving least-squares fitting with sharp
+// features"): a point whose 48 nearest same-side neighbours' normals split into two groups at
+// least 20 degrees apart, whose two quadrics joined (min at a convex edge, max at a concave one)
+// miss them by at most 0.9 times one quadric's rms, and whose own quadric would take in the
+// other face's points (normals within 60 degrees of n: estimated normals turn across an edge),
+// moves onto that join instead, and n becomes the normal of the sheet it lands on.
 // Inputs: P #P by 3, N #P by 3 unit normals oriented consistently, sigma > 0 the scan noise
-//   (estimate_scan_noise), 16 <= k_max, kappa > 0, threads (0: all cores)
-// Output: P and N moved; k the rung chosen at each point (for a projected point its anchor's).
+//   (estimate_scan_noise), 16 <= k_max, kappa > 0, edges: the edge projection on,
+//   threads (0: all cores)
+// Output: P and N moved; k the rung chosen at each point (for a projected point its anchor's);
+//   on_edges the points moved onto edge sheets.
 // Throws std::invalid_argument for bad inputs (sizes, sigma <= 0, k_max < 16, NaN).
 // See also: estimate_scan_noise (noise_level.h), fit_cloud_implicit (cloud_implicit.h)
 SmoothedPoints smooth_scan_points(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
                                   double sigma, int k_max = 512, double kappa = 1.5,
-                                  int threads = 0);
+                                  bool edges = true, int threads = 0);
 
 } // namespace interlin
