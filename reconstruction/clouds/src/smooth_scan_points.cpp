@@ -203,7 +203,7 @@ constexpr double kOppositeCos = -0.2;
 // 60 degrees of n) takes in points of the other sheet of the edge sheets f among the points idx:
 // estimated normals turn across an edge over a few spacings, and those points round it. Normals
 // exact on each face keep the point's quadric one-sided, fed by more points than the faces'
-// sheets (test_cloud_implicit.cpp's noisy box, exact normals: the mesh near the edges 0.63 x the
+// sheets (test_cloud_implicit.cpp's noisy box, exact normals: the mesh near the edges 0.61 x the
 // rounded fit's distance with this test, 0.83 x when every edge point took the projection).
 bool quadric_rounds_edge(const detail::OrientedPoints& pts, const std::vector<int>& idx,
                          const Vector3d& n, const LocalFit& f) {

@@ -740,7 +740,7 @@ TEST_CASE("cloud implicit: on a noisy scan, no slab of two sheets runs on past a
   // a razor-thin slab (0.001 to 0.02 cm thick) ran on past the blade's edges up to a leaf's
   // radius: a fin of F > 0 whose mesh reached up to 0.44 cm off the truth (bench_clouds, 100,000
   // points). The mesh's vertices off the caps, measured by project_to_surface (independent of
-  // the fit). Measured: without the slab split the farthest lies 0.237 cm off and 72 lie beyond
+  // the fit). Measured: without the slab split the farthest lies 0.237 cm off and 135 lie beyond
   // 0.1 cm; with it 0.099 cm and 0 (the noise's own reach at the edges: 5 sigma). (Before two
   // sheets' misfit was measured by the sheet that decides the join, session 31: 0.317 cm and 158
   // without the split, 0.102 cm and 3 with it.)
@@ -772,7 +772,7 @@ TEST_CASE("cloud implicit: edge sheets keep a box's edges sharp", "[clouds][impl
   // default mesh's vertices to the box near its edges (within 3 spacings of two faces) and
   // elsewhere, with and without edge sheets, 12,000 points, clean and with noise 0.3 spacings.
   // Off, the noisy box's smoothing rounds the edges too (its edge projection follows the same
-  // option). Measured near edges 0.51 x (clean) and 0.63 x (noisy) the quadrics' distance, bound
+  // option). Measured near edges 0.51 x (clean) and 0.61 x (noisy) the quadrics' distance, bound
   // 0.7 x; elsewhere 0.72 x and 0.94 x, bound 1 x (no worse).
   const Eigen::Vector3d h(0.5, 0.4, 0.3);
   for (const double sigma : {0.0, 0.005}) {

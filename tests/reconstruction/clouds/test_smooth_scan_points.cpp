@@ -185,9 +185,9 @@ TEST_CASE("smooth_scan_points: near a box's edges the points move onto its faces
   // projection moves such points onto the join of the two faces' quadrics. Mean distance to the
   // box of the moved points within 3 spacings of an edge and elsewhere, with and without it;
   // 30,000 points, noise 0.45 spacings, normals as `interlin implicit` prepares them. Measured
-  // near edges 0.00165 against 0.00184 (0.90 x; the input 0.0039), bound 0.95 x; elsewhere
-  // 1.008 x (points up to 4 spacings from an edge take edge sheets), bound 1.02 x; 4,238 points
-  // of the 5,013 near edges moved onto edge sheets.
+  // near edges 0.00166 against 0.00184 (0.90 x; the input 0.0039), bound 0.95 x; elsewhere
+  // 1.005 x (points up to 4 spacings from an edge take edge sheets), bound 1.02 x; 2,849 points
+  // moved onto edge sheets, 5,013 lie near edges.
   const Eigen::Vector3d h(0.5, 0.4, 0.3);
   const double sigma = 0.005, spacing = std::sqrt(8 * (0.2 + 0.15 + 0.12) / 30000.0);
   const PointCloud c =
