@@ -27,7 +27,8 @@
 // (--fit: one more interlin row per --fit, with these CloudFitOptions changed: support,
 // fit_ball, min_points, max_depth, noise (sigma in cm), noise_x (a multiple of estimate_noise's
 // sigma), noise_aware (0: off), acceptance_per_rho, sample_coarse (0: off), exterior_side (0:
-// off), smooth_points (0: off), split_slabs (0: off), edge_sheets (0: off); for sweeps,
+// off), smooth_points (0: off), split_slabs (0: off), split_pockets (0: off), edge_sheets (0:
+// off); for sweeps,
 // docs/benchmarks.md "What limits the unstructured fit" and "A noise-aware neighbourhood".)
 // (--diagnose: per method a line "distances:" with the quantiles of both distance directions in
 // units of the case's sigma and the share of the Chamfer from distances above 3 sigma.)
@@ -158,11 +159,12 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
     }
     if (eq == std::string::npos || used != item.size() - eq - 1 ||
         !(v > 0 || ((key == "noise_aware" || key == "sample_coarse" || key == "exterior_side" ||
-                     key == "smooth_points" || key == "split_slabs" || key == "edge_sheets") &&
+                     key == "smooth_points" || key == "split_slabs" || key == "split_pockets" ||
+                     key == "edge_sheets") &&
                     v == 0)))
       throw std::invalid_argument(
           "--fit wants KEY=POSITIVE (noise_aware, sample_coarse, "
-          "exterior_side, smooth_points, split_slabs, edge_sheets: 0 or 1), not '" +
+          "exterior_side, smooth_points, split_slabs, split_pockets, edge_sheets: 0 or 1), not '" +
           item + "'");
     if (key == "support")
       o.support = v;
@@ -184,6 +186,8 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
       o.smooth_points = v >= 1;
     else if (key == "split_slabs")
       o.split_slabs = v >= 1;
+    else if (key == "split_pockets")
+      o.split_pockets = v >= 1;
     else if (key == "edge_sheets")
       o.edge_sheets = v >= 1;
     else if (key == "acceptance_per_rho")
@@ -194,7 +198,8 @@ CloudFitOptions fit_options(const std::string& spec, const Eigen::MatrixX3d* poi
       throw std::invalid_argument("--fit: unknown key '" + key +
                                   "' (known: support, fit_ball, min_points, max_depth, noise, "
                                   "noise_x, noise_aware, acceptance_per_rho, sample_coarse, "
-                                  "exterior_side, smooth_points, split_slabs, edge_sheets)");
+                                  "exterior_side, smooth_points, split_slabs, split_pockets, "
+                                  "edge_sheets)");
   }
   return o;
 }

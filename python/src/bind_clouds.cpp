@@ -222,6 +222,7 @@ py::dict cloud_fit_dict(const CloudFitInfo& i) {
       field("exterior_negated_leaves", &CloudFitInfo::exterior_negated_leaves),
       field("exterior_split_cells", &CloudFitInfo::exterior_split_cells),
       field("slab_split_cells", &CloudFitInfo::slab_split_cells),
+      field("pocket_split_cells", &CloudFitInfo::pocket_split_cells),
       field("depth", &CloudFitInfo::depth), field("rms_distance", &CloudFitInfo::rms_distance),
       field("max_distance", &CloudFitInfo::max_distance),
       field("within_3_sigma", &CloudFitInfo::within_3_sigma),

@@ -246,6 +246,34 @@ bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, cons
   return false;
 }
 
+// Whether f's fit says outside where the points say inside: Q < 0 at kWindingLeast or more
+// points of a kPocketLattice^3 lattice over its ball that lie a point spacing or more behind the
+// nearest point (within 60 degrees of its inward normal) and have a decisive inside winding
+// number. A wall's sheet carried past a concave edge into a thin wall leaves such pockets of
+// F < 0 inside the solid (the noisy valve's slot walls below the slot floors, in the 0.2 cm wall
+// above the flange's underside: vertices up to 50 sigma off); the slab test looks for the
+// converse. Opt-in (CloudFitOptions::split_pockets): its nearest-point searches cost up to 30 %
+// of fit and mesh time (docs/benchmarks.md, "Pockets in thin walls"); a 5^3 lattice as good as
+// 7^3 at less time.
+bool pocket_in_wall(const Points& pts, const detail::NeighbourIndex& index, const LocalFit& f) {
+  constexpr int kPocketLattice = 5;
+  std::vector<int> idx;
+  std::vector<double> d2;
+  int inside = 0;
+  for (const Vector3d& x : ball_lattice(f, kPocketLattice)) {
+    if (!(detail::fit_value(f, x, nullptr) < 0))
+      continue;
+    index.knn(x, 1, idx, d2);
+    if (d2[0] < pts.area(idx[0]) ||
+        pts.N.row(idx[0]).dot(x - pts.P.row(idx[0]).transpose()) > -0.5 * std::sqrt(d2[0]))
+      continue;
+    inside += pts.winding(x) > 1 - kDecisive;
+    if (inside >= kWindingLeast)
+      return true;
+  }
+  return false;
+}
+
 // A leaf whose centre lies at least kSignSpacings point spacings (sqrt of the nearest point's
 // area) from the points, and whose Q there has the sign opposite to the winding number's side,
 // takes the far plane: at that distance the winding number is reliable and the fit has curved
@@ -357,8 +385,9 @@ bool contradicts_exterior(const detail::ExteriorGrid& g, const LocalFit& f) {
 // kAcceptMax sigma, both times `acceptance`); gap_misfit: the largest rms misfit of a fit passed
 // to its children in gaps of the sampling (fit_sparse).
 struct Rule {
-  bool split_slabs = false; // a noisy scan's slabs past thin edges are split (split_on_slab)
-  bool edge_sheets = false; // one-sheet cells may take edge sheets (fit_edge_sheets)
+  bool split_slabs = false;   // a noisy scan's slabs past thin edges are split (split_on_winding)
+  bool split_pockets = false; // pockets of F < 0 in thin walls are split (split_on_winding)
+  bool edge_sheets = false;   // one-sheet cells may take edge sheets (fit_edge_sheets)
   int min_points = 20;
   double sigma = 0, acceptance = 1, gap_misfit = 0;
 };
@@ -408,7 +437,7 @@ struct Cell {
   // parent's did; sampled: it was split on the sample
   // exterior_split: split where its fit contradicted the flood fill (contradicts_exterior)
   bool far = false, split = false, smooth = false, dense = false, sampled = false,
-       exterior_split = false, slab_split = false;
+       exterior_split = false, slab_split = false, pocket_split = false;
 };
 
 // A ball of half the radius holds about a quarter of a surface's points: children get
@@ -466,15 +495,22 @@ void split_on_exterior(Cell& c, const detail::ExteriorGrid* exterior, int max_de
   c.smooth = false;
 }
 
-// Splits cell c (its fit set, not far, not split already) on a noisy scan where its two sheets
-// make a slab past a thin wall's edge (slab_past_edge): the children's smaller balls hold the
-// slab to a smaller reach, and those without a point take the far plane.
-void split_on_slab(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
-                   const Rule& rule, int max_depth) {
-  if (!rule.split_slabs || c.far || c.split || c.level >= max_depth ||
-      !slab_past_edge(pts, index, c.fit))
+// Splits cell c (its fit set, not far, not split already) where its fit contradicts the winding
+// number away from the points: on a noisy scan where its two sheets make a slab past a thin
+// wall's edge (slab_past_edge), on any scan (opt-in) where it leaves a pocket of F < 0 in a
+// thin wall (pocket_in_wall). The children's smaller balls hold the slab or the wall's sheet to a
+// smaller reach, and those without a point take the far plane.
+void split_on_winding(Cell& c, const Points& pts, const detail::NeighbourIndex& index,
+                      const Rule& rule, int max_depth) {
+  if (c.far || c.split || c.level >= max_depth)
     return;
-  c.split = c.slab_split = true;
+  if (rule.split_slabs && slab_past_edge(pts, index, c.fit))
+    c.slab_split = true;
+  else if (rule.split_pockets && pocket_in_wall(pts, index, c.fit))
+    c.pocket_split = true;
+  else
+    return;
+  c.split = true;
   c.smooth = false;
 }
 
@@ -500,7 +536,7 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
   if (int(idx.size()) < rule.min_points) {
     c.far = fit_sparse(pts, index, rule.min_points, rule.edge_sheets, parent, f);
     split_on_exterior(c, exterior, o.max_depth);
-    split_on_slab(c, pts, index, rule, o.max_depth);
+    split_on_winding(c, pts, index, rule, o.max_depth);
     return;
   }
   const bool ok = fit_cell(pts, idx, weights(d2, R), R, rule.edge_sheets, f);
@@ -515,7 +551,7 @@ void process(Cell& c, const LocalFit* parent, const Points& pts,
     c.far = fit_sparse(pts, index, rule.min_points, rule.edge_sheets, parent, f);
   if (!c.split)
     split_on_exterior(c, exterior, o.max_depth);
-  split_on_slab(c, pts, index, rule, o.max_depth);
+  split_on_winding(c, pts, index, rule, o.max_depth);
 }
 
 // Z-order (Morton) key of a leaf's cell at the resolution of level `depth` (<= 21): leaves sorted
@@ -596,6 +632,7 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
   Rule rule = fit_rule(o, fit_sigma, info.scan_noise / info.spacing, c.points.rows());
   rule.gap_misfit = kGapMisfit * info.spacing;
   rule.split_slabs = o.split_slabs && !clean_scan;
+  rule.split_pockets = o.split_pockets;
   rule.edge_sheets = o.edge_sheets;
   info.min_points = rule.min_points;
   info.acceptance = rule.acceptance;
@@ -677,6 +714,8 @@ CloudImplicit fit_octree(const PointCloud& c, const CloudFitOptions& o, double s
       std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return c.exterior_split; });
   info.slab_split_cells =
       std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return c.slab_split; });
+  info.pocket_split_cells =
+      std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return c.pocket_split; });
   info.sampled_splits =
       std::count_if(cells.begin(), cells.end(), [](const Cell& c) { return c.sampled; });
   info.leaves = static_cast<long>(m.fits.size());

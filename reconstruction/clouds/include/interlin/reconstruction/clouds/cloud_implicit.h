@@ -106,6 +106,13 @@ struct CloudFitOptions {
   // a point spacing or more from the points where the winding number says outside) is split
   // (info.slab_split_cells). False: such slabs stay (up to a leaf's radius past the edge).
   bool split_slabs = true;
+  // A cell whose fit says outside (Q < 0) a point spacing or more behind the nearest point, where
+  // the winding number says inside (above 0.95), at 2 or more points of a 5^3 lattice over its
+  // ball is split (info.pocket_split_cells): a wall's sheet carried past a concave edge into a
+  // thin wall leaves pockets of F < 0 inside the solid (the clean valve -6 %, the UAV -6 %, the
+  // impeller -4 % Chamfer; docs/benchmarks.md "Pockets in thin walls"). Off by default: its
+  // nearest-point searches cost up to 30 % of fit and mesh time. False: such pockets stay.
+  bool split_pockets = false;
   // Noisy scans (scan noise, given or estimate_scan_noise, at least kCleanScanNoise spacings):
   // the points are first moved onto local quadrics of up to 512 neighbours, each point's number
   // chosen by Lepski's method (smooth_scan_points); the octree, its leaves accepted and sized by
@@ -130,6 +137,7 @@ struct CloudFitInfo {
   long exterior_negated_leaves = 0; // leaves negated to the flood fill's side (exterior_side)
   long exterior_split_cells = 0;    // cells split where their fit contradicted the flood fill
   long slab_split_cells = 0;        // cells split where their slab ran past a thin edge
+  long pocket_split_cells = 0;      // cells split where their fit left a pocket in a thin wall
   long sampled_splits = 0;          // cells split on every 16th point alone (their fit far off)
   int depth = 0;                    // deepest level reached
   double rms_distance = 0;          // over the input points: |F| / |grad F| (first-order distance)
@@ -190,7 +198,10 @@ struct CloudFitInfo {
 // wall's edge. Slabs too thin for that lattice are found on their mid-surface
 // (options.split_slabs): on a noisy scan, a cell whose two sheets' slab has Q > 0, a point
 // spacing or more from the points, where the winding number is below 0.05 at 2 or more of 13^2
-// samples over its ball is split (info.slab_split_cells).
+// samples over its ball is split (info.slab_split_cells). Opt-in (options.split_pockets),
+// a cell whose Q < 0 a point spacing or more behind the nearest point, where the winding number
+// is above 0.95, at 2 or more points of a 5^3 lattice over its ball is split
+// (info.pocket_split_cells): a wall's sheet carried into a thin wall past a concave edge.
 // Before fitting, the normals' orientation is checked by the divergence theorem (sum of a_i n_i .
 // (p_i - centroid) = 3 x volume > 0 for outward normals, a_i the area per point): inward normals
 // are flipped and info.flipped is set. Throws std::invalid_argument for a cloud without normals,
