@@ -27,7 +27,7 @@
 // (--fit: one more interlin row per --fit, with these CloudFitOptions changed: support,
 // fit_ball, min_points, max_depth, noise (sigma in cm), noise_x (a multiple of estimate_noise's
 // sigma), noise_aware (0: off), acceptance_per_rho, sample_coarse (0: off), exterior_side (0:
-// off), smooth_points (0: off), split_slabs (0: off), split_pockets (0: off), edge_sheets (0:
+// off), smooth_points (0: off), split_slabs (0: off), split_pockets (1: on), edge_sheets (0:
 // off); for sweeps,
 // docs/benchmarks.md "What limits the unstructured fit" and "A noise-aware neighbourhood".)
 // (--diagnose: per method a line "distances:" with the quantiles of both distance directions in
