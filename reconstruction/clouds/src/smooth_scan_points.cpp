@@ -119,18 +119,18 @@ public:
       }
       gather(k_);
     } else {
-      order_.resize(idx.size());
-      for (size_t j = 0; j < idx.size(); ++j)
-        order_[j] = {d2[j], idx[j]};
+      take(idx, d2);
     }
+    whole_ = true;
     select(k_);
   }
   // A length for the rungs' coordinates: the radius of the disc of k points.
   double scale() const { return r16_ > 0 ? disc_radius(k_) : far_; }
   // Rung [a, b) (b = 16, 32, ..., or the last point) into order()[a, b); false when none is left.
   bool rung(size_t a, size_t& b) {
-    if (a >= end_ && end_ < k_ && r16_ > 0) { // past the first disc
+    if (a >= end_ && !whole_) { // past the first disc
       gather(k_);
+      whole_ = true;
       select(k_);
     }
     b = rung_end(a);
@@ -141,7 +141,7 @@ public:
   // The radius of the rungs up to b: the distance to the nearest point of the next rung, or to
   // the farthest point after the last rung.
   double reach(size_t b) const {
-    return b < order_.size() && (b < end_ || end_ < k_) ? std::sqrt(order_[b].first) : far_;
+    return b < order_.size() && (b < end_ || !whole_) ? std::sqrt(order_[b].first) : far_;
   }
   // The m nearest points into order()[0, m) (one selection within m's rung); their farthest
   // point's squared distance, or -1 if the rungs hold fewer than m points.
@@ -172,10 +172,13 @@ private:
     std::vector<int> idx;
     std::vector<double> d2;
     index_.radius(p_, disc_radius(m), idx, d2);
+    take(idx, d2);
+    return order_.size();
+  }
+  void take(const std::vector<int>& idx, const std::vector<double>& d2) {
     order_.resize(idx.size());
     for (size_t j = 0; j < idx.size(); ++j)
       order_[j] = {d2[j], idx[j]};
-    return order_.size();
   }
   // Rungs up to the m nearest points (or all points), the nearest point after them at end_.
   void select(size_t m) {
@@ -195,8 +198,9 @@ private:
   const detail::NeighbourIndex& index_;
   Vector3d p_;
   size_t k_;
-  double r16_ = 0; // the distance to p's 16th nearest point (0: fewer indexed points)
-  size_t end_ = 0; // the rungs cover order_[0, end_)
+  double r16_ = 0;     // the distance to p's 16th nearest point (0: fewer indexed points)
+  bool whole_ = false; // order_ holds the disc of k points (else the first disc's)
+  size_t end_ = 0;     // the rungs cover order_[0, end_)
   double far_ = 0;
   std::vector<std::pair<double, int>> order_;
 };
@@ -276,13 +280,14 @@ bool edge_sheets_at(const detail::OrientedPoints& pts, Index i, const detail::Ne
                     RungNeighbours* rungs, LocalFit& f) {
   const Vector3d x = pts.P.row(i).transpose(), n = pts.N.row(i).transpose();
   std::vector<int> near, idx;
-  std::vector<double> d2;
-  if (const double r2 = rungs ? rungs->nearest(kEdgeNeighbours) : -1; r2 >= 0) {
+  double r2 = rungs ? rungs->nearest(kEdgeNeighbours) : -1; // the farthest one's squared distance
+  if (r2 >= 0) {
     for (int j = 0; j < kEdgeNeighbours; ++j)
       near.push_back(rungs->order()[size_t(j)].second);
-    d2.assign(1, r2);
   } else {
+    std::vector<double> d2;
     index.knn(x, kEdgeNeighbours, near, d2);
+    r2 = d2.back();
   }
   Vector3d m = Vector3d::Zero();
   for (int j : near)
@@ -294,7 +299,7 @@ bool edge_sheets_at(const detail::OrientedPoints& pts, Index i, const detail::Ne
       !detail::may_hold_edge(m, double(idx.size())))
     return false;
   const std::vector<double> w(idx.size(), 1.0);
-  const double R = std::sqrt(d2.back());
+  const double R = std::sqrt(r2);
   f.sheets = 1;
   if (!detail::fit_sheet(pts, idx, w, R, true, f.sheet[0]))
     return false;
