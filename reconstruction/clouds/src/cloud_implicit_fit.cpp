@@ -195,6 +195,22 @@ bool contradicts_winding(const Points& pts, const LocalFit& f, double& side) {
   return std::max(inside, outside) >= kWindingLeast;
 }
 
+// Where x lies from its nearest point: `spaced` when `spacings` point spacings (the square root
+// of that point's area) or more away, `behind` when within 60 degrees of its inward normal
+// (inside its surface). The slab and pocket tests' gate before the costly winding number.
+struct NearestSide {
+  bool spaced, behind;
+};
+NearestSide nearest_side(const Points& pts, const detail::NeighbourIndex& index, const Vector3d& x,
+                         double spacings) {
+  std::vector<int> idx;
+  std::vector<double> d2;
+  index.knn(x, 1, idx, d2);
+  const int p = idx[0];
+  return {d2[0] >= spacings * spacings * pts.area(p),
+          pts.N.row(p).dot(x - pts.P.row(p).transpose()) <= -0.5 * std::sqrt(d2[0])};
+}
+
 // Whether f's two sheets, joined by conjunction, make a slab that runs on past a thin wall's edge
 // where no point lies: the slab's mid-surface, sampled on a kSlabGrid^2 grid over the first
 // sheet's tangent disc of the ball (x0 on the first sheet, mid = x0 - n0 t / 2 with t the
@@ -212,8 +228,6 @@ bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, cons
     return false;
   const HeightSheet& s0 = f.sheet[0];
   const Vector3d l = s0.frame * (f.centre - s0.origin);
-  std::vector<int> idx;
-  std::vector<double> d2;
   int outside = 0;
   for (int i = 0; i < kSlabGrid; ++i)
     for (int j = 0; j < kSlabGrid; ++j) {
@@ -231,13 +245,11 @@ bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, cons
       if ((mid - f.centre).squaredNorm() > f.radius * f.radius ||
           !(detail::fit_value(f, mid, nullptr) > 0))
         continue;
-      index.knn(mid, 1, idx, d2);
-      // within 60 degrees of the inward normal of the nearest point: between a thick part's
-      // faces, inside (the winding number there costs most of the test's time and cannot say
-      // outside: 5 to 21 % of fit + mesh time on the noisy blades and valve, the same Chamfer to
-      // 1 %); past an edge the nearest point lies on the edge or on a face beside it
-      if (d2[0] < kSlabSpacings * kSlabSpacings * pts.area(idx[0]) ||
-          pts.N.row(idx[0]).dot(mid - pts.P.row(idx[0]).transpose()) <= -0.5 * std::sqrt(d2[0]))
+      // behind the nearest point: between a thick part's faces, inside (the winding number
+      // there costs most of the test's time and cannot say outside: 5 to 21 % of fit + mesh
+      // time on the noisy blades and valve, the same Chamfer to 1 %); past an edge the nearest
+      // point lies on the edge or on a face beside it
+      if (const NearestSide n = nearest_side(pts, index, mid, kSlabSpacings); !n.spaced || n.behind)
         continue;
       outside += pts.winding(mid) < kDecisive;
       if (outside >= kWindingLeast)
@@ -257,15 +269,11 @@ bool slab_past_edge(const Points& pts, const detail::NeighbourIndex& index, cons
 // 7^3 at less time.
 bool pocket_in_wall(const Points& pts, const detail::NeighbourIndex& index, const LocalFit& f) {
   constexpr int kPocketLattice = 5;
-  std::vector<int> idx;
-  std::vector<double> d2;
   int inside = 0;
   for (const Vector3d& x : ball_lattice(f, kPocketLattice)) {
     if (!(detail::fit_value(f, x, nullptr) < 0))
       continue;
-    index.knn(x, 1, idx, d2);
-    if (d2[0] < pts.area(idx[0]) ||
-        pts.N.row(idx[0]).dot(x - pts.P.row(idx[0]).transpose()) > -0.5 * std::sqrt(d2[0]))
+    if (const NearestSide n = nearest_side(pts, index, x, 1); !n.spaced || !n.behind)
       continue;
     inside += pts.winding(x) > 1 - kDecisive;
     if (inside >= kWindingLeast)
