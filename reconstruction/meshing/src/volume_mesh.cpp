@@ -421,12 +421,25 @@ long boundary_on_zero(const ImplicitFunction& f, double h, const VolumeMesh& vm,
   return on;
 }
 
+// The interior smoothing's guard (VolumeSmoothingOptions::keep): no move makes a corner whose
+// scaled Jacobian is below it poorer. Without it the smoothing walked small elements' corners flat
+// (default hexahedra, smallest scaled Jacobian: the UAV at cell 0.06 7e-16 with 179 elements
+// below 1e-6, the impeller at 0.25 8e-14 with 30; at resolution 24 car 6e-13, impeller 9e-15, UAV
+// 1e-12, valve 1e-14). With 0.02: 0.0012 and 0.0054 with none below 1e-6, at 24 0.019, 0.0059,
+// 0.019, 0.0099; means within 2 %, volumes the same. 0.05 to 0.2 lift the minima further (the
+// impeller at 0.25: 0.004 to 0.063) but cost coarse meshes up to 20 % of their mean, and each left
+// folds that the unguarded smoothing had opened: a pillow folded at its centre (valve, cell 0.2,
+// 0.1 and 0.2) or children the refinement could not untangle (impeller, cell 0.5, 0.05 and 0.2)
+// (docs/benchmarks.md, "Flat corners").
+constexpr double kKeptScaledJacobian = 0.02;
+
 // Step (4) of volume_mesh on any mesh whose boundary nodes lie on F = 0: functional (12) over the
-// boundary surface, then (15) over the interior. Before the interior moves, a projected layer's
-// nodes of folded elements are held short of F = 0 (hold_folded_layer), and interior moves that
-// fold an element are undone; a cut boundary has no folds (its nodes stay on their grid edges).
-// Sets held and the largest |F| at a boundary node not held. Dual hexahedra pass the nodes they
-// held (`held`, #V) and are treated like a projected layer otherwise.
+// boundary surface, then (15) over the interior, guarded by kKeptScaledJacobian. Before the
+// interior moves, a projected layer's nodes of folded elements are held short of F = 0
+// (hold_folded_layer), and interior moves that fold an element are undone; a cut boundary has no
+// folds (its nodes stay on their grid edges). Sets held and the largest |F| at a boundary node not
+// held. Dual hexahedra pass the nodes they held (`held`, #V) and are treated like a projected layer
+// otherwise.
 void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOptions& o,
                      const ProjectedLayer* layer, VolumeMesh& vm, VolumeMeshInfo& out,
                      std::vector<char> held = {}) {
@@ -469,6 +482,7 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
     VolumeSmoothingOptions so;
     so.sweeps = interior_sweeps_of(o);
     so.threads = o.threads;
+    so.keep = kKeptScaledJacobian;
     const Eigen::MatrixXd before = vm.V;
     out.smoothing = smooth_volume(vm.V, vm.C, vm.boundary, so);
     if (projected) { // moves beside a layer element h / 1024 high may fold it: those go back

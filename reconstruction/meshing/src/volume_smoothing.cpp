@@ -56,9 +56,12 @@ void node_terms(const Eigen::MatrixXi& C, const Eigen::MatrixXi& T, const detail
   }
 }
 
-// alpha of one corner and its gradient with respect to the vertex in `role`.
+// alpha of one corner and its gradient with respect to the vertex in `role`; `lengths`, when
+// given, is set to the product of the corner's three edge lengths (alpha / lengths is the corner's
+// scaled Jacobian).
 double alpha_and_gradient(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C,
-                          const Eigen::MatrixXi& T, const Involvement& in, Vec3& grad) {
+                          const Eigen::MatrixXi& T, const Involvement& in, Vec3& grad,
+                          double* lengths = nullptr) {
   const Vec3 p0 = row(V, C(in.element, in.corner));
   const Vec3 u = row(V, C(in.element, T(in.corner, 0))) - p0,
              v = row(V, C(in.element, T(in.corner, 1))) - p0,
@@ -77,6 +80,8 @@ double alpha_and_gradient(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C,
   default:
     grad = uv;
   }
+  if (lengths)
+    *lengths = u.norm() * v.norm() * w.norm();
   return u.dot(vw);
 }
 
@@ -85,6 +90,7 @@ double alpha_and_gradient(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C,
 struct LocalFunctional {
   std::vector<double> a;
   std::vector<Vec3> g;
+  std::vector<double> floor; // alpha_k may not fall below floor[k] (empty: no floors)
   double t = 1;
 
   // log sum_k exp(-t alpha_k(x0 + d)) (log-sum-exp: no overflow for badly inverted corners);
@@ -124,18 +130,34 @@ struct LocalFunctional {
       n += !(a[k] + g[k].dot(d) > 0);
     return n;
   }
+
+  // Whether every corner keeps its floor at displacement d.
+  bool keeps_floors(const Vec3& d) const {
+    for (size_t k = 0; k < floor.size(); ++k)
+      if (a[k] + g[k].dot(d) < floor[k])
+        return false;
+    return true;
+  }
 };
 
 // Newton iterations with backtracking on one node's convex local functional; returns the distance
-// the node moved.
+// the node moved. With keep > 0 a step must also keep each unfolded corner's alpha at least
+// min(its alpha at the visit, keep x its edge-length product): a poor corner (scaled Jacobian
+// below keep) gets no poorer, a good one no poorer than keep.
 double minimise_node(Eigen::MatrixXd& V, const Eigen::MatrixXi& C, const Eigen::MatrixXi& T,
-                     const std::vector<Involvement>& terms, double t, int node, int steps) {
+                     const std::vector<Involvement>& terms, double t, double keep, int node,
+                     int steps) {
   thread_local LocalFunctional L;
   L.t = t;
   L.a.resize(terms.size());
   L.g.resize(terms.size());
-  for (size_t k = 0; k < terms.size(); ++k)
-    L.a[k] = alpha_and_gradient(V, C, T, terms[k], L.g[k]);
+  L.floor.assign(keep > 0 ? terms.size() : 0, 0.0);
+  for (size_t k = 0; k < terms.size(); ++k) {
+    double lengths = 0;
+    L.a[k] = alpha_and_gradient(V, C, T, terms[k], L.g[k], &lengths);
+    if (keep > 0 && L.a[k] > 0)
+      L.floor[k] = std::min(L.a[k], keep * lengths);
+  }
   Vec3 x = Vec3::Zero(), G;
   Eigen::Matrix3d H;
   double sum = 0;
@@ -154,7 +176,7 @@ double minimise_node(Eigen::MatrixXd& V, const Eigen::MatrixXi& C, const Eigen::
     const long folded = L.folded(x);
     for (int b = 0; b < 30 && !accepted; ++b, s *= 0.5) {
       const double Ey = L(x + s * d);
-      if (Ey < E && L.folded(x + s * d) <= folded) {
+      if (Ey < E && L.folded(x + s * d) <= folded && L.keeps_floors(x + s * d)) {
         x += s * d;
         E = Ey;
         accepted = true;
@@ -442,7 +464,7 @@ VolumeSmoothingReport smooth_volume(Eigen::MatrixXd& V, const Eigen::MatrixXi& C
           if (!active[size_t(v)])
             continue;
           node_terms(C, T, ne, v, terms);
-          const double d = minimise_node(V, C, T, terms, rep.t, v, o.newton_steps);
+          const double d = minimise_node(V, C, T, terms, rep.t, o.keep, v, o.newton_steps);
           moved[size_t(task)] += d > 0;
           moved_far[size_t(v)] = d > still;
         }

@@ -17,6 +17,11 @@ struct VolumeSmoothingOptions {
   int newton_steps = 10; // Newton iterations per node and sweep (the per-node functional is
                          // convex: every alpha_j is affine in one node's position)
   int threads = 0;       // 0: all cores
+  // A node move may not make a corner whose scaled Jacobian is below `keep` poorer, nor bring
+  // another below it (0: only folding a corner is refused). exp(-t alpha) hardly tells a small
+  // element's flat corner from a sound one, so without it the backtracking walks such corners
+  // to alpha ~ 0 (docs/benchmarks.md, "Flat corners").
+  double keep = 0;
 };
 
 struct VolumeSmoothingReport {
