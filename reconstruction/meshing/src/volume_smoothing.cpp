@@ -151,7 +151,7 @@ double minimise_node(Eigen::MatrixXd& V, const Eigen::MatrixXi& C, const Eigen::
   L.t = t;
   L.a.resize(terms.size());
   L.g.resize(terms.size());
-  L.floor.assign(keep > 0 ? terms.size() : 0, 0.0);
+  L.floor.assign(keep > 0 ? terms.size() : 0, -INFINITY); // folded corners: the fold count
   for (size_t k = 0; k < terms.size(); ++k) {
     double lengths = 0;
     L.a[k] = alpha_and_gradient(V, C, T, terms[k], L.g[k], &lengths);
