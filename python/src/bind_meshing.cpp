@@ -54,7 +54,8 @@ py::dict volume_info_dict(const VolumeMeshInfo& i) {
       field("max_boundary_f", &VolumeMeshInfo::max_boundary_f),
       field("on_zero", &VolumeMeshInfo::on_zero), field("clipped", &VolumeMeshInfo::clipped),
       field("suggested_cell", &VolumeMeshInfo::suggested_cell),
-      field("folded_pillows", &VolumeMeshInfo::folded_pillows));
+      field("folded_pillows", &VolumeMeshInfo::folded_pillows),
+      field("offset_grid", &VolumeMeshInfo::offset_grid));
   d["boundary"] = boundary_name(i.boundary);
   d["body_volume"] = i.coverage.body;
   d["lost_volume"] = i.coverage.lost;
@@ -255,8 +256,9 @@ lattice's tetrahedra clipped at F = 0; lattice "bcc", the body-centred cubic lat
 isosurface stuffing, or "kuhn", the grid's cubes in 6 tetrahedra: 0.55-0.8x the elements, poorer
 angles) or "projected" (the seed's layer); interior_sweeps -1: 8, none for "bcc" (the corner
 functional distorts its lattice); hexahedra "cut" (the
-default: "pillow", or "dual" where pillows stay folded; info["boundary"] says which and
-info["folded_pillows"] how many folded), "projected", "dual": one per inside grid node, corners
+default: "pillow"; where pillows stay folded, "pillow" on the grid offset by half a cell
+(info["offset_grid"]), or "dual" where those fold too; info["boundary"] says which and
+info["folded_pillows"] how many folded on the grid), "projected", "dual": one per inside grid node, corners
 at the cells' points on F = 0 (Zhang & Bajaj 2006: walls one node layer thick kept; "tet" with
 "dual" raises ValueError); "pillow": dual
 hexahedra inside (made manifold) and one pillow layer out to F = 0 (Mitchell & Tautges 1995),

@@ -25,7 +25,8 @@ enum class VolumeElements { tetrahedra, hexahedra };
 
 // How the mesh meets F = 0. cut (default): tetrahedra: the grid's tetrahedra clipped at the roots
 // of F on their edges (cut_tetrahedra; no inverted element by construction, thin walls down to a
-// node layer kept); hexahedra: pillow, or dual where pillows stay folded. projected: seed 003's
+// node layer kept); hexahedra: pillow, on the grid offset by half a cell where pillows stay
+// folded, or dual where those fold too or lose walls. projected: seed 003's
 // layer of prisms (hexahedra) between the inner cells' boundary facets and their copies
 // projected onto F = 0 (where a wall is thinner than about 4 cells or parts touch it would
 // invert elements: those nodes are held short of F = 0, VolumeMeshInfo::held, and walls without
@@ -57,9 +58,10 @@ inline VolumeBoundary boundary_named(const std::string& name) {
 
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
-  // Tetrahedra: cut or projected. Hexahedra: cut (the default) means pillow, and dual where the
-  // pillow mesh keeps a folded element (VolumeMeshInfo::boundary, folded_pillows); or projected,
-  // dual or pillow.
+  // Tetrahedra: cut or projected. Hexahedra: cut (the default) means pillow; where the pillow
+  // mesh keeps a folded element, pillow on the grid offset by half a cell, and dual where that
+  // keeps one too (VolumeMeshInfo::boundary, folded_pillows, offset_grid); or projected, dual or
+  // pillow.
   VolumeBoundary boundary = VolumeBoundary::cut;
   // Tetrahedra with the cut boundary: the background lattice clipped (cut_tetrahedra). bcc: the
   // BCC lattice on the grid padded by a cell (isosurface stuffing; dihedral angles 60/90 degrees
@@ -108,20 +110,22 @@ struct VolumeMeshInfo {
   RegularGrid grid;
   VolumeBoundary boundary = VolumeBoundary::cut; // the boundary the mesh has (default hexahedra:
                                                  // pillow or dual)
-  long folded_pillows = 0; // default hexahedra: the pillow mesh's elements folded at a corner or
-                           // at the centre (scaled Jacobian <= 0), for which it was replaced by
-                           // the dual one (0: pillows kept)
-  long inside_nodes = 0;   // grid nodes inside by the rule
-  long dropped_nodes = 0;  // of those, nearer to F = 0 than the margin (pillow: left out of the
-                           // core to make it manifold)
-  long removed_cells = 0;  // background cells removed by the touching-configuration cleanup and
-                           // (margin > 0) where the inner cells were one cell thin
-  long inner_cells = 0;    // background cells kept (the elements copied unchanged)
-  long layer_elements = 0; // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
-                           // the pieces of the cut background tetrahedra)
-  long unprojected = 0;    // boundary nodes whose projection found no sign change (cut: 0)
-  long held = 0;           // projected layer: boundary nodes held short of F = 0 so that no
-                           // element folds (cut: 0)
+  long folded_pillows = 0;  // default hexahedra: the pillow mesh's elements folded at a corner or
+                            // at the centre (scaled Jacobian <= 0), for which it was meshed again
+                            // on the grid offset by half a cell (offset_grid), or, where pillows
+                            // fold there too, replaced by the dual one (0: pillows kept)
+  bool offset_grid = false; // default hexahedra: pillows on the grid offset by half a cell (grid)
+  long inside_nodes = 0;    // grid nodes inside by the rule
+  long dropped_nodes = 0;   // of those, nearer to F = 0 than the margin (pillow: left out of the
+                            // core to make it manifold)
+  long removed_cells = 0;   // background cells removed by the touching-configuration cleanup and
+                            // (margin > 0) where the inner cells were one cell thin
+  long inner_cells = 0;     // background cells kept (the elements copied unchanged)
+  long layer_elements = 0;  // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
+                            // the pieces of the cut background tetrahedra)
+  long unprojected = 0;     // boundary nodes whose projection found no sign change (cut: 0)
+  long held = 0;            // projected layer: boundary nodes held short of F = 0 so that no
+                            // element folds (cut: 0)
   // Boundary nodes on F = 0: neither held nor unprojected, and |F| <= 1e-6 h |grad F| there (the
   // nodes on the box faces where the body reaches the box are not); max_boundary_f is the largest
   // |F| over them (0 when there is none).
@@ -184,7 +188,8 @@ constexpr double kCellsAcrossDualWall = 2;
 // give its counts: 2158 boundary nodes and 4332 facets, 3064 and 3072. Hexahedra with o.boundary ==
 // dual or pillow replace steps (2)-(3) by dual_hexahedra or pillowed_hexahedra (the latter
 // untangled before step (4): core points free, surface points sliding on F = 0); by default
-// (o.boundary == cut) hexahedra are pillowed, and made dual instead when a pillow stays folded.
+// (o.boundary == cut) hexahedra are pillowed, on the grid offset by half a cell when a pillow
+// stays folded, and made dual instead when one folds there too (or that grid loses walls).
 // Inputs:  f (value; gradient when
 // available, else central differences, for the margin),
 //          o (std::invalid_argument for no box, bad resolution/cell, margin outside [0, 1))
