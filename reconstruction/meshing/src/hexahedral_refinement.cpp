@@ -615,10 +615,67 @@ void open_centre_folds(const Eigen::MatrixXi& C, const std::vector<char>& fixed,
   }
 }
 
+// The elements within `rings` element layers of the seed nodes, renumbered (elements_at):
+// `free` flags the nodes reached through them (every element at such a node is in the patch).
+struct Patch : detail::SubMesh {
+  std::vector<long> local; // mesh node -> patch node, or -1
+  std::vector<char> free;
+};
+
+Patch patch_around(const Eigen::MatrixXi& C, long nodes, const std::vector<long>& seeds,
+                   int rings) {
+  std::vector<long> start, elements;
+  node_elements(C, nodes, start, elements);
+  std::vector<char> reached(size_t(nodes), 0);
+  std::vector<long> frontier = seeds;
+  for (long n : seeds)
+    reached[size_t(n)] = 1;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<long> next;
+    for (long n : frontier)
+      for (long k = start[size_t(n)]; k < start[size_t(n) + 1]; ++k)
+        for (int j = 0; j < 8; ++j)
+          if (!reached[size_t(C(elements[size_t(k)], j))])
+            reached[size_t(C(elements[size_t(k)], j))] = 1,
+                                                  next.push_back(C(elements[size_t(k)], j));
+    frontier = std::move(next);
+  }
+  Patch p;
+  static_cast<detail::SubMesh&>(p) = detail::elements_at(C, reached);
+  p.local.assign(size_t(nodes), -1);
+  for (size_t k = 0; k < p.node.size(); ++k)
+    p.local[size_t(p.node[k])] = long(k), p.free.push_back(reached[size_t(p.node[k])]);
+  return p;
+}
+
+// Mean edge length of element e.
+double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
+  double sum = 0;
+  for (const auto& edge : kEdge)
+    sum += (V.row(C(e, edge[0])) - V.row(C(e, edge[1]))).norm();
+  return sum / 12;
+}
+
+// The nodes of the elements folded at a corner or at the centre.
+std::vector<long> folded_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXi& T,
+                               const Eigen::MatrixXd& V) {
+  std::vector<long> nodes;
+  for (long e = 0; e < C.rows(); ++e)
+    if (!valid_hexahedron(V, C, e, T))
+      nodes.insert(nodes.end(), C.row(e).begin(), C.row(e).end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
 // Children folded by a nearly flat parent's trilinear map (pillows at creases: the map folds
 // inside though its corners do not) untangled: the free nodes near them move, every node on the
-// boundary facets stays (rep.folded, rep.still_folded).
-void untangle_children(const Eigen::MatrixXi& C, Eigen::MatrixXd& V, RefinementReport& rep) {
+// boundary facets stays. A child whose boundary face is itself folded stays folded so (the car at
+// cell 0.3, the valve at 0.2): the patch around those is untangled again with the facets' nodes
+// sliding on F = 0 (rep.folded, rep.still_folded).
+void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, Eigen::MatrixXd& V,
+                       RefinementReport& rep) {
+  constexpr int kRings = 3;
   const Eigen::MatrixXi T = corner_table(8);
   for (long e = 0; e < C.rows(); ++e)
     rep.folded += !valid_hexahedron(V, C, e, T);
@@ -630,16 +687,24 @@ void untangle_children(const Eigen::MatrixXi& C, Eigen::MatrixXd& V, RefinementR
     fixed[size_t(B.data()[i])] = 1;
   detail::untangle_hexahedra(C, fixed, 0, V);
   open_centre_folds(C, fixed, T, V);
+  const std::vector<long> nodes = folded_nodes(C, T, V);
+  if (!nodes.empty() && f.value) {
+    const Patch patch = patch_around(C, V.rows(), nodes, kRings);
+    Eigen::MatrixXd W = V(patch.node, Eigen::all);
+    std::vector<char> held(patch.node.size()), slides(patch.node.size());
+    double edge = 0;
+    for (size_t k = 0; k < patch.node.size(); ++k) {
+      held[k] = fixed[size_t(patch.node[k])] || !patch.free[k];
+      slides[k] = fixed[size_t(patch.node[k])] && patch.free[k];
+    }
+    for (long e = 0; e < patch.C.rows(); ++e)
+      edge += mean_edge(W, patch.C, e) / double(patch.C.rows());
+    detail::untangle_hexahedra(patch.C, held, detail::implicit_surface(f, edge, 0), slides, 0, W);
+    open_centre_folds(patch.C, held, T, W);
+    V(patch.node, Eigen::all) = W;
+  }
   for (long e = 0; e < C.rows(); ++e)
     rep.still_folded += !valid_hexahedron(V, C, e, T);
-}
-
-// Mean edge length of element e.
-double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
-  double sum = 0;
-  for (const auto& edge : kEdge)
-    sum += (V.row(C(e, edge[0])) - V.row(C(e, edge[1]))).norm();
-  return sum / 12;
 }
 
 // Held nodes given a second chance: the full step onto F = 0 (P, rows of `project`), then the
@@ -694,6 +759,92 @@ std::vector<long> release_held(const std::vector<long>& held, const std::vector<
   return still;
 }
 
+// Held boundary nodes and where they would go: node n's projection onto F = 0 is P.row(at[n]).
+struct HeldNodes {
+  std::vector<char> is; // #V
+  std::vector<long> at; // #V, -1 for the others
+  const Eigen::MatrixXd& P;
+};
+
+// The patch of the mesh V (`saved`) untangled, its nodes' new places in W: its free held nodes not
+// in `stays` start on F = 0, then free nodes move and the facets' nodes on F = 0 slide on it
+// (untangle_hexahedra); with `restore`, the nodes of elements still folded then go back
+// (restore_folded). Elements folded in W that were valid in V flag their nodes in `bad`; returns
+// their number.
+long untangle_patch(const SlidingSurface& surface, const HeldNodes& held, const Patch& patch,
+                    const std::vector<char>& on_facet, const std::vector<char>& on_zero,
+                    const std::vector<char>& stays, const Eigen::MatrixXd& saved, bool restore,
+                    const Eigen::MatrixXi& T, Eigen::MatrixXd& W, std::vector<char>& bad) {
+  const long m = long(patch.node.size());
+  W = saved(patch.node, Eigen::all);
+  std::vector<char> fixed(size_t(m), 0), slides(size_t(m), 0);
+  for (long k = 0; k < m; ++k) {
+    const size_t n = size_t(patch.node[size_t(k)]);
+    fixed[size_t(k)] = on_facet[n] || !patch.free[size_t(k)];
+    slides[size_t(k)] = on_facet[n] && patch.free[size_t(k)] && on_zero[n];
+    if (held.is[n] && patch.free[size_t(k)] && !stays[n])
+      W.row(k) = held.P.row(held.at[n]), slides[size_t(k)] = 1;
+  }
+  detail::untangle_hexahedra(patch.C, fixed, surface, slides, 0, W);
+  const Eigen::MatrixXd before = saved(patch.node, Eigen::all);
+  if (restore)
+    detail::restore_folded(before, patch.free, patch.C, 0, W);
+  long folded = 0;
+  for (long e = 0; e < patch.C.rows(); ++e)
+    if (!valid_hexahedron(W, patch.C, e, T) && valid_hexahedron(before, patch.C, e, T)) {
+      ++folded;
+      for (int j = 0; j < 8; ++j)
+        bad[size_t(patch.node[size_t(patch.C(e, j))])] = 1;
+    }
+  return folded;
+}
+
+// Nodes still held put onto F = 0 after all (P, rows of `project`) and the patch of kRings
+// element layers around them untangled as the pillows are (untangle_patch). Where an element
+// stays folded, the patch is tried again from V with that element's held nodes held (at most
+// kTries times, the last putting the folded elements' nodes back instead). Returns the nodes short
+// of F = 0.
+std::vector<long> untangle_held(const ImplicitFunction& f, const std::vector<long>& held,
+                                const std::vector<long>& project, const Eigen::MatrixXd& P,
+                                long first, const std::vector<char>& on_zero,
+                                const Eigen::MatrixXi& C, const Eigen::MatrixXi& T,
+                                Eigen::MatrixXd& V) {
+  constexpr int kTries = 2, kRings = 3;
+  if (held.empty())
+    return held;
+  HeldNodes h{std::vector<char>(size_t(V.rows()), 0), std::vector<long>(size_t(V.rows()), -1), P};
+  for (size_t r = 0; r < project.size(); ++r)
+    h.at[size_t(first + project[r])] = long(r);
+  for (long n : held)
+    h.is[size_t(n)] = 1;
+  std::vector<char> on_facet(size_t(V.rows()), 0), stays(size_t(V.rows()), 0);
+  const Eigen::MatrixXi B = boundary_facets(C);
+  for (long i = 0; i < B.size(); ++i)
+    on_facet[size_t(B.data()[i])] = 1;
+  const Patch patch = patch_around(C, V.rows(), held, kRings);
+  Eigen::MatrixXd W = V(patch.node, Eigen::all);
+  double edge = 0;
+  for (long e = 0; e < patch.C.rows(); ++e)
+    edge += mean_edge(W, patch.C, e) / double(patch.C.rows());
+  const SlidingSurface surface = detail::implicit_surface(f, edge, 0);
+  for (int attempt = 0; attempt < kTries; ++attempt) {
+    std::vector<char> bad(size_t(V.rows()), 0);
+    const long folded = untangle_patch(surface, h, patch, on_facet, on_zero, stays, V,
+                                       attempt + 1 == kTries, T, W, bad);
+    if (folded == 0) {
+      std::vector<long> still;
+      for (long n : held)
+        if (W.row(patch.local[size_t(n)]) == V.row(n)) // not tried, or put back
+          still.push_back(n);
+      V(patch.node, Eigen::all) = W;
+      return still;
+    }
+    for (size_t n = 0; n < bad.size(); ++n)
+      stays[n] = stays[n] || bad[n];
+  }
+  return held;
+}
+
 // New nodes on boundary facets (rows k of made.origin in `project`) onto F = 0: a gradient walk in
 // steps of a quarter of a third of the parent's mean edge, then each placed as far as folds none of
 // its valid elements (C: the children). Flags the nodes that reached F = 0 or were held short of it
@@ -714,12 +865,13 @@ void project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents
   const std::vector<long> held = detail::place_projected(
       C, made.first, project, P, moved, V,
       [&C, &T](const Eigen::MatrixXd& W, long e) { return valid_hexahedron(W, C, e, T); });
-  rep.held_nodes = release_held(held, project, P, made.first, C, T, V);
-  rep.held = long(rep.held_nodes.size());
   for (size_t r = 0; r < project.size(); ++r) {
     boundary[size_t(made.first + project[r])] = moved[r];
     rep.projected += moved[r];
   }
+  rep.held_nodes = untangle_held(f, release_held(held, project, P, made.first, C, T, V), project, P,
+                                 made.first, boundary, C, T, V);
+  rep.held = long(rep.held_nodes.size());
 }
 
 } // namespace
@@ -790,7 +942,7 @@ RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
   for (size_t e = 0; e < out.size(); ++e)
     for (int j = 0; j < 8; ++j)
       C(long(e), j) = out[e][size_t(j)];
-  untangle_children(C, V, rep);
+  untangle_children(f, C, V, rep);
   if (!project.empty())
     project_new_nodes(f, parents, C, made, project, V, boundary, rep);
   return rep;

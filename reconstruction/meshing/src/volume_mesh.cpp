@@ -242,31 +242,6 @@ std::vector<char> folded_elements(const Eigen::MatrixXd& V, const Eigen::MatrixX
   });
 }
 
-// Nodes flagged movable of folded elements (folded_elements) go back to where they were in
-// `before` (a valid mesh), until none is folded: surface smoothing may slide a node of a cut
-// grid's small element across its opposite face, interior smoothing one beside a held layer
-// element across it. Returns the nodes put back.
-long restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& movable,
-                    const Eigen::MatrixXi& C, int threads, Eigen::MatrixXd& V) {
-  long restored = 0;
-  for (;;) {
-    const std::vector<char> folded = folded_elements(V, C, threads);
-    long moved = 0;
-    for (long e = 0; e < C.rows(); ++e) {
-      if (!folded[size_t(e)])
-        continue;
-      for (long j = 0; j < C.cols(); ++j) {
-        const int v = C(e, j);
-        if (movable[size_t(v)] && V.row(v) != before.row(v))
-          V.row(v) = before.row(v), ++moved;
-      }
-    }
-    restored += moved;
-    if (moved == 0)
-      return restored;
-  }
-}
-
 // A projected boundary layer: its nodes n_inner + r are the copies of the inner nodes below[r];
 // the facets bottom (#P by 3 or 4, inner nodes, outward) and top (their copies).
 struct ProjectedLayer {
@@ -472,7 +447,7 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
     for (size_t r = 0; r < nodes.size(); ++r)
       vm.V.row(nodes[r]) = Vb.row(long(r));
     if (layer == nullptr) // the projected layer's folds are held below
-      restore_folded(before, vm.boundary, vm.C, o.threads, vm.V);
+      detail::restore_folded(before, vm.boundary, vm.C, o.threads, vm.V);
   }
   if (layer != nullptr) // a valid mesh before the interior moves
     out.held = hold_folded_layer(vm.C, *layer, h, o.threads, vm.V, held);
@@ -489,7 +464,7 @@ void smooth_and_hold(const ImplicitFunction& f, double h, const VolumeMeshOption
       std::vector<char> interior(vm.boundary.size());
       std::transform(vm.boundary.begin(), vm.boundary.end(), interior.begin(),
                      [](char b) { return char(!b); });
-      restore_folded(before, interior, vm.C, o.threads, vm.V);
+      detail::restore_folded(before, interior, vm.C, o.threads, vm.V);
     }
   }
   out.on_zero = boundary_on_zero(f, h, vm, held, o.threads, out.max_boundary_f);
@@ -617,23 +592,6 @@ VolumeMesh dual_mesh(const ImplicitFunction& f, const RegularGrid& g0, const Vol
   return vm;
 }
 
-// F = 0 as a surface to slide boundary nodes on: outward normals, and the seed's gradient walk
-// (steps of h / 4) back onto it, both on `threads` threads.
-SlidingSurface implicit_surface(const ImplicitFunction& f, double h, int threads) {
-  SlidingSurface s;
-  s.normals = [f, h, threads](const Eigen::MatrixXd& P) {
-    return outward_directions(f, P, 1e-3 * h, threads);
-  };
-  s.project = [f, h, threads](Eigen::MatrixXd& P) {
-    std::vector<char> ok;
-    RootOptions ro;
-    ro.threads = threads;
-    project_by_gradient_walk(f, P, Eigen::VectorXd::Constant(P.rows(), h / 4), 100, ro, &ok);
-    return ok;
-  };
-  return s;
-}
-
 // The nodes of the poor elements (a corner scaled Jacobian <= tau; tau = 0: inverted) and of their
 // neighbours (sharing a node); `poor` is set to their number.
 std::vector<char> near_poor(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, double tau,
@@ -688,12 +646,19 @@ long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_al
       break;
     best = best < 0 ? poor : std::min(best, poor);
     for (size_t v = 0; v < fixed.size(); ++v)
-      fixed[v] = !fixed[v] || fixed_always[v];
+      fixed[v] = fixed[v] && !fixed_always[v]; // now: the nodes that move
     VolumeSmoothingOptions so;
     so.sweeps = 4;
     so.threads = threads;
     so.t = kSharpness / corner_alphas(V, C, threads).cwiseAbs().mean();
-    smooth_volume(V, C, fixed, so);
+    // Smoothed on the elements at the moving nodes only: a few among many (a refined mesh).
+    const detail::SubMesh sub = detail::elements_at(C, fixed);
+    Eigen::MatrixXd W = V(sub.node, Eigen::all);
+    std::vector<char> stays(sub.node.size());
+    for (size_t k = 0; k < stays.size(); ++k)
+      stays[k] = !fixed[size_t(sub.node[k])];
+    smooth_volume(W, sub.C, stays, so);
+    V(sub.node, Eigen::all) = W;
     if (surface != nullptr)
       slide_boundary_nodes(V, C, slides, *surface, so.t, kSlideFlat, threads);
   }
@@ -712,7 +677,7 @@ constexpr double kPoorPillow = 0.1;
 // kPoorPillow. Returns the elements still inverted after the first.
 long untangle_pillows(const ImplicitFunction& f, double h, const std::vector<char>& missed,
                       VolumeMesh& vm, int threads) {
-  const SlidingSurface surface = implicit_surface(f, h, threads);
+  const SlidingSurface surface = detail::implicit_surface(f, h, threads);
   std::vector<char> slides(vm.boundary.size());
   for (size_t v = 0; v < slides.size(); ++v)
     slides[v] = vm.boundary[v] && !missed[v];
@@ -832,6 +797,71 @@ VolumeMesh default_hexahedra(const ImplicitFunction& f, const RegularGrid& g,
 long detail::untangle_hexahedra(const Eigen::MatrixXi& C, const std::vector<char>& fixed,
                                 int threads, Eigen::MatrixXd& V) {
   return untangle_rounds(C, fixed, nullptr, {}, 0, threads, V);
+}
+
+long detail::untangle_hexahedra(const Eigen::MatrixXi& C, const std::vector<char>& fixed,
+                                const SlidingSurface& surface, const std::vector<char>& slides,
+                                int threads, Eigen::MatrixXd& V) {
+  return untangle_rounds(C, fixed, &surface, slides, 0, threads, V);
+}
+
+detail::SubMesh detail::elements_at(const Eigen::MatrixXi& C, const std::vector<char>& at) {
+  std::vector<long> kept;
+  for (long e = 0; e < C.rows(); ++e)
+    for (long j = 0; j < C.cols(); ++j)
+      if (at[size_t(C(e, j))]) {
+        kept.push_back(e);
+        break;
+      }
+  std::vector<long> local(at.size(), -1);
+  SubMesh sub;
+  for (long e : kept)
+    for (long j = 0; j < C.cols(); ++j)
+      local[size_t(C(e, j))] = 0;
+  for (size_t v = 0; v < local.size(); ++v)
+    if (local[v] == 0)
+      local[v] = long(sub.node.size()), sub.node.push_back(long(v));
+  sub.C.resize(long(kept.size()), C.cols());
+  for (size_t r = 0; r < kept.size(); ++r)
+    for (long j = 0; j < C.cols(); ++j)
+      sub.C(long(r), j) = int(local[size_t(C(kept[r], j))]);
+  return sub;
+}
+
+long detail::restore_folded(const Eigen::MatrixXd& before, const std::vector<char>& movable,
+                            const Eigen::MatrixXi& C, int threads, Eigen::MatrixXd& V) {
+  long restored = 0;
+  for (;;) {
+    const std::vector<char> folded = folded_elements(V, C, threads);
+    long moved = 0;
+    for (long e = 0; e < C.rows(); ++e) {
+      if (!folded[size_t(e)])
+        continue;
+      for (long j = 0; j < C.cols(); ++j) {
+        const int v = C(e, j);
+        if (movable[size_t(v)] && V.row(v) != before.row(v))
+          V.row(v) = before.row(v), ++moved;
+      }
+    }
+    restored += moved;
+    if (moved == 0)
+      return restored;
+  }
+}
+
+SlidingSurface detail::implicit_surface(const ImplicitFunction& f, double h, int threads) {
+  SlidingSurface s;
+  s.normals = [f, h, threads](const Eigen::MatrixXd& P) {
+    return outward_directions(f, P, 1e-3 * h, threads);
+  };
+  s.project = [f, h, threads](Eigen::MatrixXd& P) {
+    std::vector<char> ok;
+    RootOptions ro;
+    ro.threads = threads;
+    project_by_gradient_walk(f, P, Eigen::VectorXd::Constant(P.rows(), h / 4), 100, ro, &ok);
+    return ok;
+  };
+  return s;
 }
 
 Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C, int threads) {
