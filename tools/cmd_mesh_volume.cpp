@@ -199,9 +199,10 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
     std::cout << "  lattice      " << lattice_name(o.lattice) << "\n";
   if (!tets) {
     std::cout << "  layer        " << boundary_name(info.boundary);
-    if (info.offset_grid)
-      std::cout << " (on the grid offset by half a cell: on the grid the pillows kept "
-                << info.folded_pillows << " folded elements)";
+    if (info.offset_grid > 0)
+      std::cout << " (on the grid offset by " << (info.offset_grid == 0.5 ? "half" : "a quarter of")
+                << " a cell: on the grid the pillows kept " << info.folded_pillows
+                << " folded elements)";
     else if (info.folded_pillows > 0)
       std::cout << " (the pillow meshes kept " << info.folded_pillows << " folded elements)";
     std::cout << "\n";

@@ -256,8 +256,8 @@ lattice's tetrahedra clipped at F = 0; lattice "bcc", the body-centred cubic lat
 isosurface stuffing, or "kuhn", the grid's cubes in 6 tetrahedra: 0.55-0.8x the elements, poorer
 angles) or "projected" (the seed's layer); interior_sweeps -1: 8, none for "bcc" (the corner
 functional distorts its lattice); hexahedra "cut" (the
-default: "pillow"; where pillows stay folded, "pillow" on the grid offset by half a cell
-(info["offset_grid"]), or "dual" where those fold too; info["boundary"] says which and
+default: "pillow"; where pillows stay folded, "pillow" on the grid offset by half, then a quarter
+of a cell (info["offset_grid"]: 0.5 or 0.25), or "dual" where those fold too; info["boundary"] says which and
 info["folded_pillows"] how many folded on the grid), "projected", "dual": one per inside grid node, corners
 at the cells' points on F = 0 (Zhang & Bajaj 2006: walls one node layer thick kept; "tet" with
 "dual" raises ValueError); "pillow": dual

@@ -110,22 +110,24 @@ struct VolumeMeshInfo {
   RegularGrid grid;
   VolumeBoundary boundary = VolumeBoundary::cut; // the boundary the mesh has (default hexahedra:
                                                  // pillow or dual)
-  long folded_pillows = 0;  // default hexahedra: the pillow mesh's elements folded at a corner or
-                            // at the centre (scaled Jacobian <= 0), for which it was meshed again
-                            // on the grid offset by half a cell (offset_grid), or, where pillows
-                            // fold there too, replaced by the dual one (0: pillows kept)
-  bool offset_grid = false; // default hexahedra: pillows on the grid offset by half a cell (grid)
-  long inside_nodes = 0;    // grid nodes inside by the rule
-  long dropped_nodes = 0;   // of those, nearer to F = 0 than the margin (pillow: left out of the
-                            // core to make it manifold)
-  long removed_cells = 0;   // background cells removed by the touching-configuration cleanup and
-                            // (margin > 0) where the inner cells were one cell thin
-  long inner_cells = 0;     // background cells kept (the elements copied unchanged)
-  long layer_elements = 0;  // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
-                            // the pieces of the cut background tetrahedra)
-  long unprojected = 0;     // boundary nodes whose projection found no sign change (cut: 0)
-  long held = 0;            // projected layer: boundary nodes held short of F = 0 so that no
-                            // element folds (cut: 0)
+  long folded_pillows = 0; // default hexahedra: the pillow mesh's elements folded at a corner or
+                           // at the centre (scaled Jacobian <= 0), for which it was meshed again
+                           // on the grid offset by half, then a quarter of a cell (offset_grid),
+                           // or, where pillows fold there too, replaced by the dual one (0:
+                           // pillows kept)
+  double offset_grid = 0;  // default hexahedra: pillows on the grid offset by this fraction of a
+                           // cell towards -x, -y, -z (0.5 or 0.25; 0: on the grid)
+  long inside_nodes = 0;   // grid nodes inside by the rule
+  long dropped_nodes = 0;  // of those, nearer to F = 0 than the margin (pillow: left out of the
+                           // core to make it manifold)
+  long removed_cells = 0;  // background cells removed by the touching-configuration cleanup and
+                           // (margin > 0) where the inner cells were one cell thin
+  long inner_cells = 0;    // background cells kept (the elements copied unchanged)
+  long layer_elements = 0; // boundary-layer elements (facets, or 3 tetrahedra per facet; cut:
+                           // the pieces of the cut background tetrahedra)
+  long unprojected = 0;    // boundary nodes whose projection found no sign change (cut: 0)
+  long held = 0;           // projected layer: boundary nodes held short of F = 0 so that no
+                           // element folds (cut: 0)
   // Boundary nodes on F = 0: neither held nor unprojected, and |F| <= 1e-6 h |grad F| there (the
   // nodes on the box faces where the body reaches the box are not); max_boundary_f is the largest
   // |F| over them (0 when there is none).
