@@ -615,6 +615,9 @@ void open_centre_folds(const Eigen::MatrixXi& C, const std::vector<char>& fixed,
   }
 }
 
+// Element layers around the nodes whose elements the refinement untangles again (a patch).
+constexpr int kPatchRings = 3;
+
 // The elements within `rings` element layers of the seed nodes, renumbered (elements_at):
 // `free` flags the nodes reached through them (every element at such a node is in the patch).
 struct Patch : detail::SubMesh {
@@ -656,6 +659,23 @@ double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
   return sum / 12;
 }
 
+// The mean of the elements' mean edge lengths.
+double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C) {
+  double mean = 0;
+  for (long e = 0; e < C.rows(); ++e)
+    mean += mean_edge(V, C, e) / double(C.rows());
+  return mean;
+}
+
+// Flags (#nodes) the nodes of C's boundary facets.
+std::vector<char> facet_nodes(const Eigen::MatrixXi& C, long nodes) {
+  std::vector<char> on(size_t(nodes), 0);
+  const Eigen::MatrixXi B = boundary_facets(C);
+  for (long i = 0; i < B.size(); ++i)
+    on[size_t(B.data()[i])] = 1;
+  return on;
+}
+
 // The nodes of the elements folded at a corner or at the centre.
 std::vector<long> folded_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXi& T,
                                const Eigen::MatrixXd& V) {
@@ -675,31 +695,25 @@ std::vector<long> folded_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXi& 
 // sliding on F = 0 (rep.folded, rep.still_folded).
 void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, Eigen::MatrixXd& V,
                        RefinementReport& rep) {
-  constexpr int kRings = 3;
   const Eigen::MatrixXi T = corner_table(8);
   for (long e = 0; e < C.rows(); ++e)
     rep.folded += !valid_hexahedron(V, C, e, T);
   if (rep.folded == 0)
     return;
-  std::vector<char> fixed(size_t(V.rows()), 0);
-  const Eigen::MatrixXi B = boundary_facets(C);
-  for (long i = 0; i < B.size(); ++i)
-    fixed[size_t(B.data()[i])] = 1;
+  const std::vector<char> fixed = facet_nodes(C, V.rows());
   detail::untangle_hexahedra(C, fixed, 0, V);
   open_centre_folds(C, fixed, T, V);
   const std::vector<long> nodes = folded_nodes(C, T, V);
   if (!nodes.empty() && f.value) {
-    const Patch patch = patch_around(C, V.rows(), nodes, kRings);
+    const Patch patch = patch_around(C, V.rows(), nodes, kPatchRings);
     Eigen::MatrixXd W = V(patch.node, Eigen::all);
     std::vector<char> held(patch.node.size()), slides(patch.node.size());
-    double edge = 0;
     for (size_t k = 0; k < patch.node.size(); ++k) {
       held[k] = fixed[size_t(patch.node[k])] || !patch.free[k];
       slides[k] = fixed[size_t(patch.node[k])] && patch.free[k];
     }
-    for (long e = 0; e < patch.C.rows(); ++e)
-      edge += mean_edge(W, patch.C, e) / double(patch.C.rows());
-    detail::untangle_hexahedra(patch.C, held, detail::implicit_surface(f, edge, 0), slides, 0, W);
+    const SlidingSurface surface = detail::implicit_surface(f, mean_edge(W, patch.C), 0);
+    detail::untangle_hexahedra(patch.C, held, surface, slides, 0, W);
     open_centre_folds(patch.C, held, T, W);
     V(patch.node, Eigen::all) = W;
   }
@@ -707,23 +721,23 @@ void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, Eige
     rep.still_folded += !valid_hexahedron(V, C, e, T);
 }
 
-// Held nodes given a second chance: the full step onto F = 0 (P, rows of `project`), then the
-// free nodes of its elements moved by the max-min search (improve_node, a few rounds); kept when
-// every element around the moved nodes is valid, else undone. Returns the nodes still held.
-std::vector<long> release_held(const std::vector<long>& held, const std::vector<long>& project,
-                               const Eigen::MatrixXd& P, long first, const Eigen::MatrixXi& C,
+// Where the new boundary nodes go on F = 0: node n's projection is P.row(at[n]) (-1: none).
+struct Projections {
+  std::vector<long> at; // #V
+  const Eigen::MatrixXd& P;
+  Eigen::RowVector3d of(long n) const { return P.row(at[size_t(n)]); }
+};
+
+// Held nodes given a second chance: the full step onto F = 0, then the free nodes (not `fixed`:
+// the facets' nodes) of its elements moved by the max-min search (improve_node, a few rounds);
+// kept when every element around the moved nodes is valid, else undone. Returns the nodes still
+// held.
+std::vector<long> release_held(const std::vector<long>& held, const Projections& to,
+                               const std::vector<char>& fixed, const Eigen::MatrixXi& C,
                                const Eigen::MatrixXi& T, Eigen::MatrixXd& V) {
   constexpr int kRounds = 5;
-  if (held.empty())
-    return held;
-  std::vector<long> row(size_t(V.rows() - first), -1), start, elements, still;
-  for (size_t r = 0; r < project.size(); ++r)
-    row[size_t(project[r])] = long(r);
+  std::vector<long> start, elements, still;
   node_elements(C, V.rows(), start, elements);
-  std::vector<char> fixed(size_t(V.rows()), 0);
-  const Eigen::MatrixXi B = boundary_facets(C);
-  for (long i = 0; i < B.size(); ++i)
-    fixed[size_t(B.data()[i])] = 1;
   auto worst_around = [&](long n) {
     double w = 1;
     for (long k = start[size_t(n)]; k < start[size_t(n) + 1]; ++k)
@@ -741,7 +755,7 @@ std::vector<long> release_held(const std::vector<long>& held, const std::vector<
     Eigen::MatrixXd saved(long(nodes.size()), 3);
     for (size_t i = 0; i < nodes.size(); ++i)
       saved.row(long(i)) = V.row(nodes[i]);
-    V.row(n) = P.row(row[size_t(n - first)]);
+    V.row(n) = to.of(n);
     for (int round = 0; round < kRounds; ++round)
       for (size_t i = 1; i < nodes.size(); ++i)
         if (worst_around(nodes[i]) <= 0)
@@ -759,34 +773,28 @@ std::vector<long> release_held(const std::vector<long>& held, const std::vector<
   return still;
 }
 
-// Held boundary nodes and where they would go: node n's projection onto F = 0 is P.row(at[n]).
-struct HeldNodes {
-  std::vector<char> is; // #V
-  std::vector<long> at; // #V, -1 for the others
-  const Eigen::MatrixXd& P;
-};
-
-// The patch of the mesh V (`saved`) untangled, its nodes' new places in W: its free held nodes not
-// in `stays` start on F = 0, then free nodes move and the facets' nodes on F = 0 slide on it
-// (untangle_hexahedra); with `restore`, the nodes of elements still folded then go back
+// The patch of the mesh V (`saved`) untangled, its nodes' new places in W: its free `held` nodes
+// not in `stays` start on F = 0 (`to`), then free nodes move and the facets' nodes on F = 0 slide
+// on it (untangle_hexahedra); with `restore`, the nodes of elements still folded then go back
 // (restore_folded). Elements folded in W that were valid in V flag their nodes in `bad`; returns
 // their number.
-long untangle_patch(const SlidingSurface& surface, const HeldNodes& held, const Patch& patch,
-                    const std::vector<char>& on_facet, const std::vector<char>& on_zero,
-                    const std::vector<char>& stays, const Eigen::MatrixXd& saved, bool restore,
-                    const Eigen::MatrixXi& T, Eigen::MatrixXd& W, std::vector<char>& bad) {
+long untangle_patch(const SlidingSurface& surface, const std::vector<char>& held,
+                    const Projections& to, const Patch& patch, const std::vector<char>& on_facet,
+                    const std::vector<char>& on_zero, const std::vector<char>& stays,
+                    const Eigen::MatrixXd& saved, bool restore, const Eigen::MatrixXi& T,
+                    Eigen::MatrixXd& W, std::vector<char>& bad) {
   const long m = long(patch.node.size());
-  W = saved(patch.node, Eigen::all);
+  const Eigen::MatrixXd before = saved(patch.node, Eigen::all);
+  W = before;
   std::vector<char> fixed(size_t(m), 0), slides(size_t(m), 0);
   for (long k = 0; k < m; ++k) {
     const size_t n = size_t(patch.node[size_t(k)]);
     fixed[size_t(k)] = on_facet[n] || !patch.free[size_t(k)];
     slides[size_t(k)] = on_facet[n] && patch.free[size_t(k)] && on_zero[n];
-    if (held.is[n] && patch.free[size_t(k)] && !stays[n])
-      W.row(k) = held.P.row(held.at[n]), slides[size_t(k)] = 1;
+    if (held[n] && patch.free[size_t(k)] && !stays[n])
+      W.row(k) = to.of(long(n)), slides[size_t(k)] = 1;
   }
   detail::untangle_hexahedra(patch.C, fixed, surface, slides, 0, W);
-  const Eigen::MatrixXd before = saved(patch.node, Eigen::all);
   if (restore)
     detail::restore_folded(before, patch.free, patch.C, 0, W);
   long folded = 0;
@@ -799,37 +807,27 @@ long untangle_patch(const SlidingSurface& surface, const HeldNodes& held, const 
   return folded;
 }
 
-// Nodes still held put onto F = 0 after all (P, rows of `project`) and the patch of kRings
-// element layers around them untangled as the pillows are (untangle_patch). Where an element
-// stays folded, the patch is tried again from V with that element's held nodes held (at most
-// kTries times, the last putting the folded elements' nodes back instead). Returns the nodes short
-// of F = 0.
+// Nodes still held put onto F = 0 after all (`to`) and the patch of kPatchRings element layers
+// around them untangled as the pillows are (untangle_patch; `on_facet`: the facets' nodes). Where
+// an element stays folded, the patch is tried again from V with that element's held nodes held (at
+// most kTries times, the last putting the folded elements' nodes back instead). Returns the nodes
+// short of F = 0.
 std::vector<long> untangle_held(const ImplicitFunction& f, const std::vector<long>& held,
-                                const std::vector<long>& project, const Eigen::MatrixXd& P,
-                                long first, const std::vector<char>& on_zero,
-                                const Eigen::MatrixXi& C, const Eigen::MatrixXi& T,
-                                Eigen::MatrixXd& V) {
-  constexpr int kTries = 2, kRings = 3;
+                                const Projections& to, const std::vector<char>& on_facet,
+                                const std::vector<char>& on_zero, const Eigen::MatrixXi& C,
+                                const Eigen::MatrixXi& T, Eigen::MatrixXd& V) {
+  constexpr int kTries = 2;
   if (held.empty())
     return held;
-  HeldNodes h{std::vector<char>(size_t(V.rows()), 0), std::vector<long>(size_t(V.rows()), -1), P};
-  for (size_t r = 0; r < project.size(); ++r)
-    h.at[size_t(first + project[r])] = long(r);
+  std::vector<char> is_held(size_t(V.rows()), 0), stays(size_t(V.rows()), 0);
   for (long n : held)
-    h.is[size_t(n)] = 1;
-  std::vector<char> on_facet(size_t(V.rows()), 0), stays(size_t(V.rows()), 0);
-  const Eigen::MatrixXi B = boundary_facets(C);
-  for (long i = 0; i < B.size(); ++i)
-    on_facet[size_t(B.data()[i])] = 1;
-  const Patch patch = patch_around(C, V.rows(), held, kRings);
+    is_held[size_t(n)] = 1;
+  const Patch patch = patch_around(C, V.rows(), held, kPatchRings);
   Eigen::MatrixXd W = V(patch.node, Eigen::all);
-  double edge = 0;
-  for (long e = 0; e < patch.C.rows(); ++e)
-    edge += mean_edge(W, patch.C, e) / double(patch.C.rows());
-  const SlidingSurface surface = detail::implicit_surface(f, edge, 0);
+  const SlidingSurface surface = detail::implicit_surface(f, mean_edge(W, patch.C), 0);
   for (int attempt = 0; attempt < kTries; ++attempt) {
     std::vector<char> bad(size_t(V.rows()), 0);
-    const long folded = untangle_patch(surface, h, patch, on_facet, on_zero, stays, V,
+    const long folded = untangle_patch(surface, is_held, to, patch, on_facet, on_zero, stays, V,
                                        attempt + 1 == kTries, T, W, bad);
     if (folded == 0) {
       std::vector<long> still;
@@ -869,8 +867,14 @@ void project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents
     boundary[size_t(made.first + project[r])] = moved[r];
     rep.projected += moved[r];
   }
-  rep.held_nodes = untangle_held(f, release_held(held, project, P, made.first, C, T, V), project, P,
-                                 made.first, boundary, C, T, V);
+  if (!held.empty()) {
+    Projections to{std::vector<long>(size_t(V.rows()), -1), P};
+    for (size_t r = 0; r < project.size(); ++r)
+      to.at[size_t(made.first + project[r])] = long(r);
+    const std::vector<char> on_facet = facet_nodes(C, V.rows());
+    rep.held_nodes = untangle_held(f, release_held(held, to, on_facet, C, T, V), to, on_facet,
+                                   boundary, C, T, V);
+  }
   rep.held = long(rep.held_nodes.size());
 }
 

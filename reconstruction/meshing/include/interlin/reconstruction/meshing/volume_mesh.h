@@ -25,8 +25,8 @@ enum class VolumeElements { tetrahedra, hexahedra };
 
 // How the mesh meets F = 0. cut (default): tetrahedra: the grid's tetrahedra clipped at the roots
 // of F on their edges (cut_tetrahedra; no inverted element by construction, thin walls down to a
-// node layer kept); hexahedra: pillow, on the grid offset by half a cell where pillows stay
-// folded, or dual where those fold too or lose walls. projected: seed 003's
+// node layer kept); hexahedra: pillow, on the grid offset by half, then a quarter of a cell
+// where pillows stay folded, or dual where those fold too or lose walls. projected: seed 003's
 // layer of prisms (hexahedra) between the inner cells' boundary facets and their copies
 // projected onto F = 0 (where a wall is thinner than about 4 cells or parts touch it would
 // invert elements: those nodes are held short of F = 0, VolumeMeshInfo::held, and walls without
@@ -59,9 +59,9 @@ inline VolumeBoundary boundary_named(const std::string& name) {
 struct VolumeMeshOptions {
   VolumeElements elements = VolumeElements::tetrahedra;
   // Tetrahedra: cut or projected. Hexahedra: cut (the default) means pillow; where the pillow
-  // mesh keeps a folded element, pillow on the grid offset by half a cell, and dual where that
-  // keeps one too (VolumeMeshInfo::boundary, folded_pillows, offset_grid); or projected, dual or
-  // pillow.
+  // mesh keeps a folded element, pillow on the grid offset by half, then a quarter of a cell,
+  // and dual where those keep one too (VolumeMeshInfo::boundary, folded_pillows, offset_grid); or
+  // projected, dual or pillow.
   VolumeBoundary boundary = VolumeBoundary::cut;
   // Tetrahedra with the cut boundary: the background lattice clipped (cut_tetrahedra). bcc: the
   // BCC lattice on the grid padded by a cell (isosurface stuffing; dihedral angles 60/90 degrees
@@ -190,8 +190,9 @@ constexpr double kCellsAcrossDualWall = 2;
 // give its counts: 2158 boundary nodes and 4332 facets, 3064 and 3072. Hexahedra with o.boundary ==
 // dual or pillow replace steps (2)-(3) by dual_hexahedra or pillowed_hexahedra (the latter
 // untangled before step (4): core points free, surface points sliding on F = 0); by default
-// (o.boundary == cut) hexahedra are pillowed, on the grid offset by half a cell when a pillow
-// stays folded, and made dual instead when one folds there too (or that grid loses walls).
+// (o.boundary == cut) hexahedra are pillowed, on the grid offset by half, then a quarter of a
+// cell when a pillow stays folded, and made dual instead when one folds there too (or those grids
+// lose walls).
 // Inputs:  f (value; gradient when
 // available, else central differences, for the margin),
 //          o (std::invalid_argument for no box, bad resolution/cell, margin outside [0, 1))
