@@ -253,6 +253,18 @@ void check_grid(const ParsedArgs& a, const Eigen::AlignedBox3d& box, const Impli
   }
 }
 
+// Whether the options' grid limits allow meshing `box` at `cell` (a default grid refined).
+bool grid_allowed(const ParsedArgs& a, const Eigen::AlignedBox3d& box, ImplicitMeshOptions o,
+                  double cell) {
+  o.cell = cell;
+  try {
+    check_grid(a, box, o);
+    return true;
+  } catch (const UsageError&) {
+    return false;
+  }
+}
+
 // Surface mesh: marching cubes, then the optional smoothing and edge flips; warnings on stderr.
 void surface_mesh(const ImplicitFunction& f, const std::string& input, ImplicitMeshOptions& o,
                   int smooth, bool flip, bool quiet, const Progress& progress, Eigen::MatrixXd& V,
@@ -286,15 +298,15 @@ void surface_mesh(const ImplicitFunction& f, const std::string& input, ImplicitM
 // The surface mesh's summary on stdout; an error when it is not watertight.
 void print_surface_summary(const std::string& input, const Eigen::AlignedBox3d& box,
                            const ImplicitMeshOptions& o, const ImplicitMeshInfo& info,
-                           const MeshReport& r) {
+                           const MeshReport& r, const std::string& grid_note) {
   const RegularGrid& g = info.grid;
   std::cout << "interlin mesh " << input << "\n";
   std::cout << "  box          [" << fmt(box.min()(0)) << ", " << fmt(box.max()(0)) << "] x ["
             << fmt(box.min()(1)) << ", " << fmt(box.max()(1)) << "] x [" << fmt(box.min()(2))
             << ", " << fmt(box.max()(2)) << "]\n";
   std::cout << "  grid         " << g.nodes(0) << " x " << g.nodes(1) << " x " << g.nodes(2)
-            << " nodes, cell " << fmt(g.spacing(0)) << ", " << info.subboxes(0) << " x "
-            << info.subboxes(1) << " x " << info.subboxes(2) << " sub-boxes"
+            << " nodes, cell " << fmt(g.spacing(0)) << grid_note << ", " << info.subboxes(0)
+            << " x " << info.subboxes(1) << " x " << info.subboxes(2) << " sub-boxes"
             << (info.skipped > 0 ? " (" + std::to_string(info.skipped) + " without surface skipped)"
                                  : std::string())
             << ", "
@@ -332,8 +344,9 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   progress("reading " + input);
   const ImplicitFunction f = load_implicit(input, mo);
   const Eigen::AlignedBox3d box = o.box.isEmpty() ? f.box : o.box;
+  const bool default_grid = !a.has("resolution") && !a.has("cell");
   // a surface of a model fitted to points: cells of half the detail it resolves by default
-  if (!a.has("resolution") && !a.has("cell") && !a.has("volume") && f.sample_spacing > 0)
+  if (default_grid && !a.has("volume") && f.sample_spacing > 0)
     o.cell = default_mesh_cell(f, box);
   check_grid(a, box, o);
   if (a.has("volume")) {
@@ -349,6 +362,8 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
     r.azimuth = azimuth;
     r.elevation = elevation;
     r.model = mo;
+    r.default_grid = default_grid;
+    r.grid_allowed = [&](double cell) { return grid_allowed(a, box, o, cell); };
     mesh_volume(a, f, r, progress, written);
     return;
   }
@@ -357,7 +372,28 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   ImplicitMeshInfo info;
   surface_mesh(f, input, o, smooth, flip, quiet, progress, V, F, info);
   progress("checking the mesh");
-  print_surface_summary(input, box, o, info, check_mesh(V, F));
+  MeshReport report = check_mesh(V, F);
+  SagCheck sag = check_sag(f, V, F, report.volume, info.grid.spacing(0), o.threads, progress);
+  const SagCheck first = sag;
+  SagCheck before;
+  for (int pass = 0; default_grid && report.watertight() && pass < kSagPasses; ++pass) {
+    // as volume meshes (refine_for_sag)
+    const double cell = sag_refined_cell(sag, pass > 0 ? &before : nullptr, first.h);
+    if (!(cell > 0) || !grid_allowed(a, box, o, cell))
+      break;
+    progress(std::string("the facets ") + (sag.fraction > 0 ? "leave out " : "add ") +
+             fmt(100 * std::abs(sag.fraction), 2) +
+             " % of the body's volume: meshing again at cell " + fmt(cell, 4));
+    o.cell = cell;
+    surface_mesh(f, input, o, smooth, flip, quiet, progress, V, F, info);
+    progress("checking the mesh");
+    report = check_mesh(V, F);
+    before = sag;
+    sag = check_sag(f, V, F, report.volume, info.grid.spacing(0), o.threads, progress);
+  }
+  const std::string grid_note = sag.h < first.h ? sag_refinement_note(first) : "";
+  print_surface_summary(input, box, o, info, report, grid_note);
+  print_sag(sag, quiet);
   for (const std::string& out : outputs) {
     progress("writing " + out);
     if (kinds.at(out) == Kind::mesh) {

@@ -9,6 +9,7 @@
 #include "interlin/reconstruction/io/volume_mesh_io.h"
 #include "interlin/reconstruction/meshing/adaptive_refinement.h"
 #include "interlin/reconstruction/meshing/boundary_mesh.h"
+#include "interlin/reconstruction/meshing/facet_sag.h"
 #include "interlin/reconstruction/meshing/hexahedral_refinement.h"
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 #include "interlin/reconstruction/meshing/volume_quality.h"
@@ -180,13 +181,14 @@ double max_new_boundary_f(const ImplicitFunction& f, const VolumeMesh& m, long f
 
 // The summary on stdout; `on_zero` counts the boundary nodes on F = 0 (after any refinement).
 void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMeshInfo& info,
-                   const VolumeQuality& q, const VolumeMeshOptions& o, long on_zero) {
+                   const VolumeQuality& q, const VolumeMeshOptions& o, long on_zero,
+                   const std::string& grid_note) {
   const RegularGrid& g = info.grid;
   const bool tets = m.C.cols() == 4;
   const long boundary_nodes = std::count(m.boundary.begin(), m.boundary.end(), char(1));
   std::cout << "interlin mesh " << r.input << " --volume " << (tets ? "tet" : "hex") << "\n";
   std::cout << "  grid         " << g.nodes(0) << " x " << g.nodes(1) << " x " << g.nodes(2)
-            << " nodes, cell " << fmt(g.spacing(0)) << ", "
+            << " nodes, cell " << fmt(g.spacing(0)) << grid_note << ", "
             << (o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency())))
             << " threads\n";
   std::cout << "  elements     " << m.C.rows() << (tets ? " tetrahedra" : " hexahedra") << " ("
@@ -227,6 +229,35 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
               << fmt(info.coverage.body, 7) << " on the grid clipped at F = 0)\n";
 }
 
+// A mesh on the default grid whose facets leave out (or add) more than kLostVolumeWarning of the
+// body's volume is made again at sag_refined_cell, up to kSagPasses times, while the limits allow
+// the grid (else it stays, and print_sag warns). Returns the summary's note on the refinement
+// ("" for none) and sets `last` to the final mesh's check.
+std::string refine_for_sag(const ImplicitFunction& f, const VolumeRequest& r,
+                           const Progress& progress, VolumeMeshOptions& o, VolumeMesh& m,
+                           VolumeMeshInfo& info, SagCheck& last) {
+  const double h0 = info.grid.spacing(0);
+  last =
+      check_sag(f, m.V, m.B, volume_quality(m.V, m.C, r.threads).volume, h0, r.threads, progress);
+  const SagCheck first = last;
+  SagCheck before;
+  for (int pass = 0; pass < kSagPasses; ++pass) {
+    const double cell = sag_refined_cell(last, pass > 0 ? &before : nullptr, h0);
+    if (!(cell > 0) || !r.grid_allowed(cell))
+      break;
+    progress(std::string("the facets ") + (last.fraction > 0 ? "leave out " : "add ") +
+             fmt(100 * std::abs(last.fraction), 2) +
+             " % of the body's volume: meshing again at cell " + fmt(cell, 4));
+    o.cell = cell;
+    info = VolumeMeshInfo{};
+    m = volume_mesh(f, o, &info);
+    before = last;
+    last = check_sag(f, m.V, m.B, volume_quality(m.V, m.C, r.threads).volume, info.grid.spacing(0),
+                     r.threads, progress);
+  }
+  return last.h < h0 ? sag_refinement_note(first) : "";
+}
+
 // x > 0 rounded down to 2 significant digits: a suggested cell must not grow by rounding.
 double two_digits_down(double x) {
   const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1);
@@ -249,6 +280,56 @@ std::string lost_volume_fix(const VolumeMeshInfo& info, const VolumeMeshOptions&
 }
 
 } // namespace
+
+SagCheck check_sag(const ImplicitFunction& f, const Eigen::MatrixXd& V, const Eigen::MatrixXi& B,
+                   double volume, double h, int threads, const Progress& progress) {
+  SagCheck c;
+  c.h = h;
+  if (B.rows() == 0 || !(std::abs(volume) > 0))
+    return c;
+  progress("measuring the facets' distance to F = 0");
+  c.sag = facet_sag(f, V, B, threads);
+  c.fraction = c.sag.volume / volume;
+  return c;
+}
+
+double sag_refined_cell(const SagCheck& c, const SagCheck* before, double default_cell) {
+  if (!(std::abs(c.fraction) > kLostVolumeWarning))
+    return 0;
+  double order = 2; // cell_for_sag's
+  if (before && before->fraction * c.fraction > 0 && before->h > c.h)
+    order =
+        std::clamp(std::log(before->fraction / c.fraction) / std::log(before->h / c.h), 0.5, 2.0);
+  const double cell =
+      std::max(0.9 * c.h * std::pow(kLostVolumeWarning / std::abs(c.fraction), 1 / order),
+               default_cell / kMaxSagRefinement);
+  return cell < 0.99 * c.h ? cell : 0;
+}
+
+std::string sag_refinement_note(const SagCheck& coarse) {
+  return " (the default cell " + fmt(coarse.h, 4) + " refined: its facets " +
+         (coarse.fraction > 0 ? "left out " : "added ") + fmt(100 * std::abs(coarse.fraction), 2) +
+         " % of the body's volume)";
+}
+
+void print_sag(const SagCheck& c, bool quiet) {
+  const FacetSag& s = c.sag;
+  const double total = s.area + s.skipped_area;
+  if (!(total > 0))
+    return;
+  std::cout << "  sag          facets up to " << fmt(s.max_distance, 3) << " from F = 0 ("
+            << fmt(s.max_distance / c.h, 2) << " cells); the body's volume about "
+            << fmt(100 * std::abs(c.fraction), 3) << " % " << (c.fraction >= 0 ? "above" : "below")
+            << " the mesh's (the facets' chords, measured along their normals; "
+            << fmt(100 * s.skipped_area / total, 2)
+            << " % of their area not measured: sharp edges)\n";
+  if (!quiet && std::abs(c.fraction) > kLostVolumeWarning)
+    std::cerr << "warning: the facets, chords of a surface that bends within a few cells, "
+              << (c.fraction > 0 ? "leave out about " : "add about ")
+              << fmt(100 * std::abs(c.fraction), 2) << " % of the body's volume: use --cell "
+              << fmt(two_digits_down(cell_for_sag(c.h, c.fraction, kLostVolumeWarning)), 2)
+              << " or smaller\n";
+}
 
 long long volume_element_limit(const ParsedArgs& a) {
   return limit_option(a, "max-elements",
@@ -283,6 +364,9 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
                                : std::string("refine the grid with --resolution or --cell, or "
                                              "check the box")) +
                           ")");
+  SagCheck sag;
+  const std::string grid_note =
+      r.default_grid ? refine_for_sag(f, r, progress, o, m, info, sag) : "";
   const long before = m.C.rows(), first_new = m.V.rows();
   const std::vector<RefinementReport> passes = adapt_request.passes > 0
                                                    ? adapt(adapt_request, f, o, progress, m)
@@ -296,7 +380,10 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   long on_zero = info.on_zero;
   for (const RefinementReport& p : passes) // the refinement's new boundary nodes, held or not
     on_zero += p.projected - p.held, info.held += p.held;
-  print_summary(r, m, info, q, o, on_zero);
+  if (!r.default_grid || !passes.empty()) // the mesh refine_for_sag checked changed
+    sag = check_sag(f, m.V, m.B, q.volume, info.grid.spacing(0), r.threads, progress);
+  print_summary(r, m, info, q, o, on_zero, grid_note);
+  print_sag(sag, r.quiet);
   warn_body_reaches_box(info.clipped, r.quiet);
   if (!r.quiet && info.lost_fraction() > kLostVolumeWarning)
     std::cerr << "warning: the mesh leaves out " << fmt(100 * info.lost_fraction(), 2)

@@ -6,8 +6,11 @@
 
 #include "interlin/interflatation/implicit_function.h"
 #include "interlin/interflatation/rfunctions/model.h"
+#include "interlin/reconstruction/meshing/facet_sag.h"
 
+#include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,6 +28,10 @@ struct VolumeRequest {
   int azimuth = 45, elevation = 25; // --view of the .png preview
   bool quiet = false;
   ModelOptions model; // how the model was read (--set, --var), for --adapt-var
+  // Neither --resolution nor --cell given: the grid is refined where the mesh's facets leave
+  // out more than kLostVolumeWarning of the volume, if grid_allowed(cell) (the limits).
+  bool default_grid = false;
+  std::function<bool(double cell)> grid_allowed;
 };
 
 // Whether `path` is an output `interlin mesh --volume` can write (.vtu .msh .inp for the
@@ -38,6 +45,35 @@ long long volume_element_limit(const ParsedArgs& a);
 // The volume options of `interlin mesh` (--volume, --boundary, --margin, --sweeps, --seed-rule,
 // --adapt, --adapt-delta, --adapt-var, --max-elements) for the parser.
 std::vector<OptionSpec> volume_options();
+
+// A mesh's boundary facets B (#B by 3 or 4) against F = 0 (facet_sag), the sag as a fraction of
+// the mesh's volume, at cell h.
+struct SagCheck {
+  FacetSag sag;
+  double fraction = 0;
+  double h = 0;
+};
+SagCheck check_sag(const ImplicitFunction& f, const Eigen::MatrixXd& V, const Eigen::MatrixXi& B,
+                   double volume, double h, int threads, const Progress& progress);
+
+// Default grids refine at most this many times per axis for the sag, in at most kSagPasses
+// passes.
+constexpr double kMaxSagRefinement = 4;
+constexpr int kSagPasses = 2;
+
+// The cell at which a mesh on a default grid (cell `default_cell`) would keep the body's volume
+// within kLostVolumeWarning, from the mesh checked in c: cell_for_sag's h^2, or the order
+// observed between `before` (a coarser mesh's check, or nullptr) and c, clamped to [0.5, 2]; at
+// most kMaxSagRefinement times finer than default_cell. 0 when c is within, or no finer cell is
+// left.
+double sag_refined_cell(const SagCheck& c, const SagCheck* before, double default_cell);
+
+// What the summary's grid line says of a default cell refined for the sag of the mesh `coarse`.
+std::string sag_refinement_note(const SagCheck& coarse);
+
+// The sag line of the summary on stdout and, above kLostVolumeWarning of the volume, a warning
+// on stderr naming the cell at which it would be within.
+void print_sag(const SagCheck& c, bool quiet);
 
 // Parses the volume options, meshes, prints the summary, writes the outputs (appending each to
 // `written`). Throws UsageError for bad options, InputError for a model without a body in the

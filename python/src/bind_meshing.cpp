@@ -4,6 +4,7 @@
 #include "bindings.h"
 
 #include "interlin/reconstruction/meshing/adaptive_refinement.h"
+#include "interlin/reconstruction/meshing/facet_sag.h"
 #include "interlin/reconstruction/meshing/hexahedral_refinement.h"
 #include "interlin/reconstruction/meshing/implicit_mesh.h"
 #include "interlin/reconstruction/meshing/mesh_check.h"
@@ -286,6 +287,31 @@ suggested_cell (the cell that keeps such walls), with a UserWarning above 0.5 % 
       R"(Quality of a volume mesh V (N, 3), C (E, 4) or (E, 8) -> dict: elements, inverted, volume,
 min/max_dihedral_deg, min/mean_scaled_jacobian, min/mean_radius_ratio (NaN for hexahedra),
 outside_10_170 (elements with a dihedral angle outside [10, 170] degrees).)");
+  m.def(
+      "facet_sag",
+      [](const ImplicitFunction& f, const MatrixXd& V, const MatrixXi& B, int threads) {
+        require_shape(V, 3, "V");
+        if (B.cols() != 3 && B.cols() != 4)
+          throw py::value_error("B: expected an (M, 3) or (M, 4) array of node indices");
+        if (B.size() > 0 && (B.minCoeff() < 0 || B.maxCoeff() >= V.rows()))
+          throw py::value_error("B: node index outside [0, N)");
+        FacetSag s;
+        {
+          py::gil_scoped_release release;
+          s = facet_sag(f, V, B, threads);
+        }
+        py::dict d;
+        d["volume"] = s.volume, d["max_distance"] = s.max_distance, d["area"] = s.area;
+        d["skipped_area"] = s.skipped_area;
+        return d;
+      },
+      py::arg("f"), py::arg("V"), py::arg("B"), py::arg("threads") = 0,
+      R"(How far the boundary facets B (M, 3) triangles or (M, 4) quadrilaterals, counter-clockwise
+from outside, of a mesh with nodes V (N, 3) lie from F = 0 -> dict: volume (the integral of the
+distance to F = 0 along the facet normals, > 0 where the body reaches beyond the facets: the body's
+volume is about the mesh's plus it), max_distance, area (measured) and skipped_area (facets more
+than 60 degrees from -grad F or with no zero within their diameter). Triangles by their edge
+midpoints, quadrilaterals by 3 x 3 Simpson points.)");
 }
 
 } // namespace

@@ -9,6 +9,7 @@
 #include "corner_jacobian.h"
 #include "parallel.h"
 #include "untangle.h"
+#include "value_and_gradient.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -78,25 +79,6 @@ Eigen::VectorXd values(const ImplicitFunction& f, const Points3& P, int threads)
   return F;
 }
 
-// F and grad F at the rows of X: f.gradient, else central differences with step d.
-void value_and_gradient(const ImplicitFunction& f, const Points3& X, double d,
-                        Eigen::Ref<Eigen::VectorXd> F, Eigen::Ref<Points3> G) {
-  if (f.gradient) {
-    f.gradient(X, F, G);
-    return;
-  }
-  f.value(X, F);
-  for (int a = 0; a < 3; ++a) {
-    Points3 Q = X;
-    Eigen::VectorXd Fp(X.rows()), Fm(X.rows());
-    Q.col(a).array() += d;
-    f.value(Q, Fp);
-    Q.col(a).array() -= 2 * d;
-    f.value(Q, Fm);
-    G.col(a) = (Fp - Fm) / (2 * d);
-  }
-}
-
 // value_and_gradient at the rows of P, in batches on `threads` threads.
 void values_and_gradients(const ImplicitFunction& f, const Points3& P, double d, int threads,
                           Eigen::VectorXd& F, Points3& G) {
@@ -104,7 +86,7 @@ void values_and_gradients(const ImplicitFunction& f, const Points3& P, double d,
   G.resize(P.rows(), 3);
   detail::parallel_chunks(P.rows(), kBatch, threads, [&](long, long r0, long r1) {
     const long m = r1 - r0;
-    value_and_gradient(f, P.middleRows(r0, m), d, F.segment(r0, m), G.middleRows(r0, m));
+    detail::value_and_gradient(f, P.middleRows(r0, m), d, F.segment(r0, m), G.middleRows(r0, m));
   });
 }
 
