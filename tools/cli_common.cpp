@@ -6,7 +6,9 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cfloat>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -164,6 +166,22 @@ MeshPrecision mesh_precision(const ParsedArgs& args) {
                       {"double", "single"}) == "double"
              ? MeshPrecision::float64
              : MeshPrecision::float32;
+}
+
+void warn_single_precision(const std::string& path, const Eigen::MatrixXd& V,
+                           MeshPrecision precision, bool quiet) {
+  const std::string ext = lower_extension(path);
+  const bool single = ext == ".stl" || ext == ".off" || precision == MeshPrecision::float32;
+  if (quiet || !single || V.rows() == 0)
+    return;
+  const double diagonal = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+  const float far = float(V.cwiseAbs().maxCoeff());
+  const double rounding = 0.5 * double(std::nextafter(far, FLT_MAX) - far); // half a float's ulp
+  if (rounding > 1e-5 * diagonal)
+    std::cerr << "warning: " << path << " stores single-precision coordinates: at "
+              << fmt(double(far), 3) << " from the origin they round by up to " << fmt(rounding, 2)
+              << " (" << fmt(rounding / diagonal, 2)
+              << " of the mesh's size); .ply and .obj keep double precision\n";
 }
 
 ModelOptions model_options(const ParsedArgs& args, SettingLabel label) {

@@ -69,6 +69,13 @@ std::string fmt(double x, int precision = 4);
 // --mesh-precision double|single (default double): the coordinates of PLY and OBJ outputs.
 MeshPrecision mesh_precision(const ParsedArgs& args);
 
+// A warning on stderr (unless quiet) when the mesh file `path` stores its coordinates in single
+// precision (.stl and .off always, .ply and .obj with MeshPrecision::float32) and rounding them
+// to floats moves a vertex by more than 1e-5 of the bounding-box diagonal of V (#V by 3): a body
+// far from the origin. Names the rounding and the double-precision formats.
+void warn_single_precision(const std::string& path, const Eigen::MatrixXd& V,
+                           MeshPrecision precision, bool quiet);
+
 // How a --set value that is not a number is named in its error: the whole NAME=VALUE (eval) or
 // the NAME alone (mesh).
 enum class SettingLabel { setting, name };

@@ -218,6 +218,7 @@ void write_report(const std::string& path, const LoftJob& job, const LoftRun& ru
 
 void write_mesh_file(const std::string& path, const LoftJob& job, const LoftRun&,
                      const Mesh& mesh) {
+  warn_single_precision(path, mesh.V, job.precision, job.quiet);
   write_mesh(path, mesh.V, mesh.F, job.precision);
 }
 

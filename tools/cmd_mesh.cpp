@@ -16,6 +16,7 @@
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <thread>
@@ -295,15 +296,23 @@ void surface_mesh(const ImplicitFunction& f, const std::string& input, ImplicitM
   }
 }
 
+// The box's side along `axis` as "[lo, hi]", with 4 significant digits of its length however far
+// it lies from the origin.
+std::string interval(const Eigen::AlignedBox3d& box, int axis) {
+  const double lo = box.min()(axis), hi = box.max()(axis);
+  const double far = std::max(std::abs(lo), std::abs(hi)), side = hi - lo;
+  const int digits = side > 0 && far > side ? 4 + int(std::ceil(std::log10(far / side))) : 4;
+  return "[" + fmt(lo, digits) + ", " + fmt(hi, digits) + "]";
+}
+
 // The surface mesh's summary on stdout; an error when it is not watertight.
 void print_surface_summary(const std::string& input, const Eigen::AlignedBox3d& box,
                            const ImplicitMeshOptions& o, const ImplicitMeshInfo& info,
                            const MeshReport& r, const std::string& grid_note) {
   const RegularGrid& g = info.grid;
   std::cout << "interlin mesh " << input << "\n";
-  std::cout << "  box          [" << fmt(box.min()(0)) << ", " << fmt(box.max()(0)) << "] x ["
-            << fmt(box.min()(1)) << ", " << fmt(box.max()(1)) << "] x [" << fmt(box.min()(2))
-            << ", " << fmt(box.max()(2)) << "]\n";
+  std::cout << "  box          " << interval(box, 0) << " x " << interval(box, 1) << " x "
+            << interval(box, 2) << "\n";
   std::cout << "  grid         " << g.nodes(0) << " x " << g.nodes(1) << " x " << g.nodes(2)
             << " nodes, cell " << fmt(g.spacing(0)) << grid_note << ", " << info.subboxes(0)
             << " x " << info.subboxes(1) << " x " << info.subboxes(2) << " sub-boxes"
@@ -397,6 +406,7 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   for (const std::string& out : outputs) {
     progress("writing " + out);
     if (kinds.at(out) == Kind::mesh) {
+      warn_single_precision(out, V, precision, quiet);
       write_mesh(out, V, F, precision);
     } else {
       PreviewOptions po;

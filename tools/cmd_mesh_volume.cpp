@@ -431,6 +431,7 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
     if (is_volume_mesh_path(out)) {
       write_volume_mesh(out, m.V, m.C, m.B, fields);
     } else if (surface_output(out)) {
+      warn_single_precision(out, SV, MeshPrecision::float64, r.quiet);
       write_mesh(out, SV, SF);
     } else {
       PreviewOptions po;

@@ -278,7 +278,7 @@ TEST_CASE("CLI mesh --volume: a body that reaches the box is warned about as for
 }
 
 TEST_CASE("CLI mesh: a rod 3 default cells across is meshed again at a finer cell for the "
-          "facets' sag; with the cell given, a warning names one",
+          "facets' sag, with the cell given a warning names one",
           "[cli][mesh][volume][sag]") {
   // Radius 0.05, length 4: volume 0.01 pi. On the default grid (128 cells along z, 3 across) the
   // tetrahedra's facets leave out 3.7 % and the surface's 13 % (facet_sag); the default grid is
