@@ -7,6 +7,7 @@
 #include "interlin/reconstruction/meshing/surface_smoothing.h"
 
 #include "corner_jacobian.h"
+#include "open_flat_corners.h"
 #include "parallel.h"
 #include "untangle.h"
 #include "value_and_gradient.h"
@@ -886,8 +887,11 @@ Eigen::MatrixXi boundary_facets(const Eigen::MatrixXi& C, int threads) {
   return B;
 }
 
-VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
-                       VolumeMeshInfo* info) {
+namespace {
+
+// volume_mesh before the flat corners are opened.
+VolumeMesh mesh_on_grid(const ImplicitFunction& f, const VolumeMeshOptions& o,
+                        VolumeMeshInfo* info) {
   if (!f.value)
     throw std::invalid_argument("volume_mesh: the implicit function has no value");
   if (!(o.margin >= 0 && o.margin < 1))
@@ -1016,6 +1020,18 @@ VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
     layer.below[size_t(r)] = index_of(m.node(r));
   smooth_and_hold(f, g.spacing.minCoeff(), o, &layer, vm, out);
   coverage(vm);
+  return vm;
+}
+
+} // namespace
+
+VolumeMesh volume_mesh(const ImplicitFunction& f, const VolumeMeshOptions& o,
+                       VolumeMeshInfo* info) {
+  VolumeMesh vm = mesh_on_grid(f, o, info);
+  // Hexahedral corners the untangling left flat (2.5e-15 on body (11) at 128 cells), opened on
+  // the mesh the default chose: a fold they untangle on the grid must not change that choice.
+  if (vm.C.cols() == 8 && vm.C.rows() > 0)
+    detail::open_flat_corners(vm.C, vm.boundary, kKeptScaledJacobian, vm.V);
   return vm;
 }
 
