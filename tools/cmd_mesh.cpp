@@ -383,24 +383,18 @@ void mesh_main(const ParsedArgs& a, std::vector<std::string>& written) {
   progress("checking the mesh");
   MeshReport report = check_mesh(V, F);
   SagCheck sag = check_sag(f, V, F, report.volume, info.grid.spacing(0), o.threads, progress);
-  const SagCheck first = sag;
-  SagCheck before;
-  for (int pass = 0; default_grid && report.watertight() && pass < kSagPasses; ++pass) {
-    // as volume meshes (refine_for_sag)
-    const double cell = sag_refined_cell(sag, pass > 0 ? &before : nullptr, first.h);
-    if (!(cell > 0) || !grid_allowed(a, box, o, cell))
-      break;
-    progress(std::string("the facets ") + (sag.fraction > 0 ? "leave out " : "add ") +
-             fmt(100 * std::abs(sag.fraction), 2) +
-             " % of the body's volume: meshing again at cell " + fmt(cell, 4));
-    o.cell = cell;
-    surface_mesh(f, input, o, smooth, flip, quiet, progress, V, F, info);
-    progress("checking the mesh");
-    report = check_mesh(V, F);
-    before = sag;
-    sag = check_sag(f, V, F, report.volume, info.grid.spacing(0), o.threads, progress);
-  }
-  const std::string grid_note = sag.h < first.h ? sag_refinement_note(first) : "";
+  std::string grid_note;
+  if (default_grid && report.watertight())
+    grid_note = refine_for_sag(
+        sag, [&](double cell) { return grid_allowed(a, box, o, cell); },
+        [&](double cell) {
+          o.cell = cell;
+          surface_mesh(f, input, o, smooth, flip, quiet, progress, V, F, info);
+          progress("checking the mesh");
+          report = check_mesh(V, F);
+          return check_sag(f, V, F, report.volume, info.grid.spacing(0), o.threads, progress);
+        },
+        progress);
   print_surface_summary(input, box, o, info, report, grid_note);
   print_sag(sag, quiet);
   for (const std::string& out : outputs) {

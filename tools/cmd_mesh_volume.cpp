@@ -229,35 +229,6 @@ void print_summary(const VolumeRequest& r, const VolumeMesh& m, const VolumeMesh
               << fmt(info.coverage.body, 7) << " on the grid clipped at F = 0)\n";
 }
 
-// A mesh on the default grid whose facets leave out (or add) more than kLostVolumeWarning of the
-// body's volume is made again at sag_refined_cell, up to kSagPasses times, while the limits allow
-// the grid (else it stays, and print_sag warns). Returns the summary's note on the refinement
-// ("" for none) and sets `last` to the final mesh's check.
-std::string refine_for_sag(const ImplicitFunction& f, const VolumeRequest& r,
-                           const Progress& progress, VolumeMeshOptions& o, VolumeMesh& m,
-                           VolumeMeshInfo& info, SagCheck& last) {
-  const double h0 = info.grid.spacing(0);
-  last =
-      check_sag(f, m.V, m.B, volume_quality(m.V, m.C, r.threads).volume, h0, r.threads, progress);
-  const SagCheck first = last;
-  SagCheck before;
-  for (int pass = 0; pass < kSagPasses; ++pass) {
-    const double cell = sag_refined_cell(last, pass > 0 ? &before : nullptr, h0);
-    if (!(cell > 0) || !r.grid_allowed(cell))
-      break;
-    progress(std::string("the facets ") + (last.fraction > 0 ? "leave out " : "add ") +
-             fmt(100 * std::abs(last.fraction), 2) +
-             " % of the body's volume: meshing again at cell " + fmt(cell, 4));
-    o.cell = cell;
-    info = VolumeMeshInfo{};
-    m = volume_mesh(f, o, &info);
-    before = last;
-    last = check_sag(f, m.V, m.B, volume_quality(m.V, m.C, r.threads).volume, info.grid.spacing(0),
-                     r.threads, progress);
-  }
-  return last.h < h0 ? sag_refinement_note(first) : "";
-}
-
 // x > 0 rounded down to 2 significant digits: a suggested cell must not grow by rounding.
 double two_digits_down(double x) {
   const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1);
@@ -293,22 +264,32 @@ SagCheck check_sag(const ImplicitFunction& f, const Eigen::MatrixXd& V, const Ei
   return c;
 }
 
-double sag_refined_cell(const SagCheck& c, const SagCheck* before, double default_cell) {
-  if (!(std::abs(c.fraction) > kLostVolumeWarning))
-    return 0;
-  double order = 2; // cell_for_sag's
-  if (before && before->fraction * c.fraction > 0 && before->h > c.h)
-    order =
-        std::clamp(std::log(before->fraction / c.fraction) / std::log(before->h / c.h), 0.5, 2.0);
-  const double cell =
-      std::max(0.9 * c.h * std::pow(kLostVolumeWarning / std::abs(c.fraction), 1 / order),
-               default_cell / kMaxSagRefinement);
-  return cell < 0.99 * c.h ? cell : 0;
-}
-
-std::string sag_refinement_note(const SagCheck& coarse) {
-  return " (the default cell " + fmt(coarse.h, 4) + " refined: its facets " +
-         (coarse.fraction > 0 ? "left out " : "added ") + fmt(100 * std::abs(coarse.fraction), 2) +
+std::string refine_for_sag(SagCheck& last, const std::function<bool(double cell)>& allowed,
+                           const std::function<SagCheck(double cell)>& remesh,
+                           const Progress& progress) {
+  constexpr int kPasses = 2;
+  constexpr double kMaxRefinement = 4; // per axis, over the default cell
+  const SagCheck first = last;
+  SagCheck before;
+  for (int pass = 0; pass < kPasses && std::abs(last.fraction) > kLostVolumeWarning; ++pass) {
+    double order = 2; // observed on the second pass
+    if (pass > 0 && before.fraction * last.fraction > 0 && before.h > last.h)
+      order = std::clamp(std::log(before.fraction / last.fraction) / std::log(before.h / last.h),
+                         0.5, 2.0);
+    const double cell = std::max(cell_for_sag(last.h, last.fraction, kLostVolumeWarning, order),
+                                 first.h / kMaxRefinement);
+    if (!(cell < 0.99 * last.h) || !allowed(cell))
+      break;
+    progress(std::string("the facets ") + (last.fraction > 0 ? "leave out " : "add ") +
+             fmt(100 * std::abs(last.fraction), 2) +
+             " % of the body's volume: meshing again at cell " + fmt(cell, 4));
+    before = last;
+    last = remesh(cell);
+  }
+  if (!(last.h < first.h))
+    return "";
+  return " (the default cell " + fmt(first.h, 4) + " refined: its facets " +
+         (first.fraction > 0 ? "left out " : "added ") + fmt(100 * std::abs(first.fraction), 2) +
          " % of the body's volume)";
 }
 
@@ -364,9 +345,26 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
                                : std::string("refine the grid with --resolution or --cell, or "
                                              "check the box")) +
                           ")");
+  std::vector<ElementQuality> per;
+  VolumeQuality q;
   SagCheck sag;
-  const std::string grid_note =
-      r.default_grid ? refine_for_sag(f, r, progress, o, m, info, sag) : "";
+  std::string grid_note;
+  if (r.default_grid) {
+    progress("checking the elements");
+    q = volume_quality(m.V, m.C, r.threads, &per);
+    sag = check_sag(f, m.V, m.B, q.volume, info.grid.spacing(0), r.threads, progress);
+    grid_note = refine_for_sag(
+        sag, r.grid_allowed,
+        [&](double cell) {
+          o.cell = cell;
+          info = VolumeMeshInfo{};
+          m = volume_mesh(f, o, &info);
+          progress("checking the elements");
+          q = volume_quality(m.V, m.C, r.threads, &per);
+          return check_sag(f, m.V, m.B, q.volume, info.grid.spacing(0), r.threads, progress);
+        },
+        progress);
+  }
   const long before = m.C.rows(), first_new = m.V.rows();
   const std::vector<RefinementReport> passes = adapt_request.passes > 0
                                                    ? adapt(adapt_request, f, o, progress, m)
@@ -374,14 +372,14 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   if (!passes.empty())
     info.max_boundary_f =
         std::max(info.max_boundary_f, max_new_boundary_f(f, m, first_new, passes));
-  progress("checking the elements");
-  std::vector<ElementQuality> per;
-  const VolumeQuality q = volume_quality(m.V, m.C, r.threads, &per);
+  if (!r.default_grid || !passes.empty()) { // else checked above, and unchanged since
+    progress("checking the elements");
+    q = volume_quality(m.V, m.C, r.threads, &per);
+    sag = check_sag(f, m.V, m.B, q.volume, info.grid.spacing(0), r.threads, progress);
+  }
   long on_zero = info.on_zero;
   for (const RefinementReport& p : passes) // the refinement's new boundary nodes, held or not
     on_zero += p.projected - p.held, info.held += p.held;
-  if (!r.default_grid || !passes.empty()) // the mesh refine_for_sag checked changed
-    sag = check_sag(f, m.V, m.B, q.volume, info.grid.spacing(0), r.threads, progress);
   print_summary(r, m, info, q, o, on_zero, grid_note);
   print_sag(sag, r.quiet);
   warn_body_reaches_box(info.clipped, r.quiet);

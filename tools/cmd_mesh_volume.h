@@ -56,20 +56,15 @@ struct SagCheck {
 SagCheck check_sag(const ImplicitFunction& f, const Eigen::MatrixXd& V, const Eigen::MatrixXi& B,
                    double volume, double h, int threads, const Progress& progress);
 
-// Default grids refine at most this many times per axis for the sag, in at most kSagPasses
-// passes.
-constexpr double kMaxSagRefinement = 4;
-constexpr int kSagPasses = 2;
-
-// The cell at which a mesh on a default grid (cell `default_cell`) would keep the body's volume
-// within kLostVolumeWarning, from the mesh checked in c: cell_for_sag's h^2, or the order
-// observed between `before` (a coarser mesh's check, or nullptr) and c, clamped to [0.5, 2]; at
-// most kMaxSagRefinement times finer than default_cell. 0 when c is within, or no finer cell is
-// left.
-double sag_refined_cell(const SagCheck& c, const SagCheck* before, double default_cell);
-
-// What the summary's grid line says of a default cell refined for the sag of the mesh `coarse`.
-std::string sag_refinement_note(const SagCheck& coarse);
+// A mesh on a default grid whose check `last` misses (or adds) more than kLostVolumeWarning of
+// the body's volume is made again, up to twice, at a finer cell (cell_for_sag's h^2, on the second
+// pass the order observed between the two meshes, clamped to [0.5, 2]; at most 4 times finer than
+// the first), while allowed(cell) (the grid limits): remesh(cell) meshes at that cell and returns
+// the new mesh's check, which becomes `last`. Returns the summary's grid-line note on the
+// refinement ("" for none).
+std::string refine_for_sag(SagCheck& last, const std::function<bool(double cell)>& allowed,
+                           const std::function<SagCheck(double cell)>& remesh,
+                           const Progress& progress);
 
 // The sag line of the summary on stdout and, above kLostVolumeWarning of the volume, a warning
 // on stderr naming the cell at which it would be within.

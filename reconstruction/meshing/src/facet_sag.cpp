@@ -205,9 +205,9 @@ FacetSag facet_sag(const ImplicitFunction& f, const Eigen::MatrixXd& V, const Ei
   return r;
 }
 
-double cell_for_sag(double h, double fraction, double target) {
+double cell_for_sag(double h, double fraction, double target, double order) {
   const double a = std::abs(fraction);
-  return a > target ? 0.9 * h * std::sqrt(target / a) : h;
+  return a > target ? 0.9 * h * std::pow(target / a, 1 / order) : h;
 }
 
 } // namespace interlin

@@ -38,8 +38,8 @@ FacetSag facet_sag(const ImplicitFunction& f, const Eigen::MatrixXd& V, const Ei
                    int threads = 0);
 
 // The cell at which the sag of a mesh at cell h would be `target` of the body's volume, from the
-// measured fraction (sag shrinks as h^2 on a smooth surface and at a chamfered edge alike), 10 %
-// smaller for the constant's variation; h when the fraction is within target.
-double cell_for_sag(double h, double fraction, double target);
+// measured fraction, the sag shrinking as h^order (2 on a smooth surface and at a chamfered edge
+// alike), 10 % smaller for the constant's variation; h when the fraction is within target.
+double cell_for_sag(double h, double fraction, double target, double order = 2);
 
 } // namespace interlin
