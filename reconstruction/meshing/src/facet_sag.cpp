@@ -1,6 +1,8 @@
 // The volume between boundary facets and F = 0 (facet_sag.h).
 #include "interlin/reconstruction/meshing/facet_sag.h"
 
+#include "interlin/reconstruction/meshing/project_to_zero.h"
+
 #include "parallel.h"
 #include "value_and_gradient.h"
 
@@ -16,8 +18,8 @@ namespace {
 
 constexpr long kFacetsPerTask = 2048;
 constexpr double kMinCosine = 0.5;  // normal within 60 degrees of -grad F
-constexpr int kMaxSteps = 16;       // secant / regula falsi steps after the Newton step
-constexpr double kTolerance = 1e-9; // of the facet's diameter
+constexpr int kScanSteps = 8;       // steps of an eighth of the facet's diameter
+constexpr double kTolerance = 1e-9; // of the facet's diameter: a corner on F = 0
 
 // Quadrature points of a chunk of facets: position, unit outward normal, weight, reach.
 struct Samples {
@@ -67,51 +69,9 @@ Samples quad_samples(const Eigen::MatrixXd& V, const Eigen::MatrixXi& B, long b0
   return s;
 }
 
-// The root search of one sample along X + t s N, t in [0, reach], s = sign F(X): phi(t) = s F.
-struct Search {
-  double lo = 0, phi_lo = 0;  // phi > 0
-  double hi = -1, phi_hi = 0; // phi <= 0 once bracketed (hi >= 0)
-  double t = 0;               // the point to evaluate next
-  int side = 0;               // regula falsi: the end kept last time (Illinois halving)
-  bool done = false, skipped = false;
-};
-
-// The next point of a search from its bracket (or, unbracketed, the secant through 0 and lo).
-void next_point(Search& q, double phi0, double reach) {
-  if (q.hi >= 0) {
-    const double t = q.lo + (q.hi - q.lo) * q.phi_lo / (q.phi_lo - q.phi_hi);
-    q.t = std::isfinite(t) && t > q.lo && t < q.hi ? t : 0.5 * (q.lo + q.hi);
-    return;
-  }
-  const double t = phi0 > q.phi_lo ? q.lo * phi0 / (phi0 - q.phi_lo) : 2 * q.lo;
-  q.t = std::min(std::max(t, 1.5 * q.lo), reach);
-}
-
-// phi at q.t: bracket update; done when the bracket or phi is within tolerance.
-void take_value(Search& q, double phi, double phi0, double reach) {
-  const double t = q.t;
-  if (phi > 0) {
-    if (q.side == +1 && q.hi >= 0)
-      q.phi_hi *= 0.5; // Illinois: the other end kept twice
-    q.lo = t, q.phi_lo = phi, q.side = +1;
-    if (q.hi < 0 && t >= reach)
-      q.done = q.skipped = true; // no zero within the facet's diameter
-  } else {
-    if (q.side == -1)
-      q.phi_lo *= 0.5;
-    q.hi = t, q.phi_hi = phi, q.side = -1;
-  }
-  if (q.done)
-    return;
-  if (std::abs(phi) <= 1e-14 * phi0 || (q.hi >= 0 && q.hi - q.lo <= kTolerance * reach)) {
-    q.t = q.hi >= 0 && std::abs(phi) > 1e-14 * phi0 ? 0.5 * (q.lo + q.hi) : t;
-    q.done = true;
-    return;
-  }
-  next_point(q, phi0, reach);
-}
-
-// The signed distance of every sample (0 for skipped ones, flagged).
+// The signed distance of every sample to F = 0 along its normal (0 for skipped ones, flagged):
+// seed 003's findBorder (project_along) from the sample, steps of an eighth of the facet's
+// diameter up to the diameter, then regula falsi.
 void distances(const ImplicitFunction& f, const Samples& s, Eigen::VectorXd& d,
                std::vector<char>& skipped) {
   const long n = s.X.rows();
@@ -122,58 +82,31 @@ void distances(const ImplicitFunction& f, const Samples& s, Eigen::VectorXd& d,
   Eigen::VectorXd F0(n);
   Points3 G(n, 3);
   detail::value_and_gradient(f, s.X, 1e-4 * s.reach.maxCoeff(), F0, G);
-  std::vector<Search> q(static_cast<size_t>(n));
-  std::vector<long> active;
+  std::vector<long> rows;
   for (long k = 0; k < n; ++k) {
-    const double phi0 = std::abs(F0(k));
-    const double slope = G.row(k).dot(s.N.row(k)), g = G.row(k).norm();
-    Search& sq = q[size_t(k)];
-    sq.done = true;
-    if (phi0 <= kTolerance * g * s.reach(k) || s.w(k) == 0)
+    const double g = G.row(k).norm();
+    if (std::abs(F0(k)) <= kTolerance * g * s.reach(k) || s.w(k) == 0)
       continue; // on F = 0 to first order (corners): distance 0
-    if (!std::isfinite(F0(k)) || !(g > 0) || -slope < kMinCosine * g) {
-      sq.skipped = true;
-      continue;
-    }
-    sq.done = false;
-    sq.phi_lo = phi0;
-    sq.t = std::min(phi0 / -slope, s.reach(k)); // Newton
-    active.push_back(k);
+    if (!std::isfinite(F0(k)) || !(g > 0) || -G.row(k).dot(s.N.row(k)) < kMinCosine * g)
+      skipped[size_t(k)] = 1;
+    else
+      rows.push_back(k);
   }
-  Points3 P;
-  Eigen::VectorXd Fp;
-  for (int step = 0; step <= kMaxSteps && !active.empty(); ++step) {
-    P.resize(long(active.size()), 3);
-    for (size_t a = 0; a < active.size(); ++a) {
-      const long k = active[a];
-      const double sign = F0(k) > 0 ? 1 : -1;
-      P.row(long(a)) = s.X.row(k) + sign * q[size_t(k)].t * s.N.row(k);
-    }
-    Fp.resize(P.rows());
-    f.value(P, Fp);
-    std::vector<long> still;
-    for (size_t a = 0; a < active.size(); ++a) {
-      const long k = active[a];
-      Search& sq = q[size_t(k)];
-      const double sign = F0(k) > 0 ? 1 : -1;
-      const double phi = sign * Fp(long(a));
-      if (!std::isfinite(phi)) {
-        sq.done = sq.skipped = true;
-        continue;
-      }
-      take_value(sq, phi, std::abs(F0(k)), s.reach(k));
-      if (!sq.done && step == kMaxSteps)
-        sq.done = true, sq.skipped = sq.hi < 0;
-      if (!sq.done)
-        still.push_back(k);
-    }
-    active.swap(still);
-  }
-  for (long k = 0; k < n; ++k) {
-    const Search& sq = q[size_t(k)];
-    skipped[size_t(k)] = sq.skipped;
-    if (!sq.skipped)
-      d(k) = (F0(k) > 0 ? 1 : -1) * sq.t;
+  Eigen::MatrixXd P(long(rows.size()), 3), D(long(rows.size()), 3);
+  Eigen::VectorXd h(long(rows.size()));
+  for (size_t a = 0; a < rows.size(); ++a)
+    P.row(long(a)) = s.X.row(rows[a]), D.row(long(a)) = s.N.row(rows[a]),
+    h(long(a)) = s.reach(rows[a]) / kScanSteps;
+  RootOptions o;
+  o.threads = 1; // facet_sag's tasks are the parallel loop
+  std::vector<char> moved;
+  project_along(f, P, D, h, o, &moved, kScanSteps, 1);
+  for (size_t a = 0; a < rows.size(); ++a) {
+    const long k = rows[a];
+    if (moved[a])
+      d(k) = (P.row(long(a)) - s.X.row(k)).dot(s.N.row(k));
+    else
+      skipped[size_t(k)] = 1; // no zero within the facet's diameter
   }
 }
 

@@ -27,8 +27,8 @@ struct FacetSag {
 // edge midpoints with weights A / 3 (exact for a quadratic surface over a planar facet whose
 // corners are on it); a bilinear quadrilateral's 3 x 3 Simpson points (corners, edge midpoints and
 // centre, weights (1, 4, 1) x (1, 4, 1) / 36 times its area element). The distance is the root of
-// F along the normal by a Newton step from grad F, then safeguarded secant steps (regula falsi
-// once bracketed) to 1e-9 of the facet's diameter.
+// F along the normal by seed 003's findBorder (project_along: steps of an eighth of the facet's
+// diameter up to the diameter, then roots_on_segments' regula falsi).
 // Inputs:  f (value; gradient when available, else central differences), V #V by 3, B #B by 3
 //          triangles or #B by 4 quadrilaterals (counter-clockwise from outside), threads (0: all
 //          cores; the result does not depend on it)
