@@ -129,10 +129,11 @@ AdaptRequest adapt_request_of(const ParsedArgs& a, const ImplicitFunction& f,
 // tetrahedra smoothed again (the templates' children are valid but uneven). Hexahedra are not:
 // functional (15) with one t for children a third and a ninth the size of their neighbours
 // undoes the grading (ball at 10 cells, 2 passes, 8 sweeps: mean scaled Jacobian 0.82 -> 0.26,
-// 6 elements folded at their centres). Returns the reports of the passes made.
+// 6 elements folded at their centres). Returns the reports of the passes kept; a hexahedral pass
+// that left children folded and was undone goes to `undone`.
 std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunction& f,
                                     const VolumeMeshOptions& o, const Progress& progress,
-                                    VolumeMesh& m) {
+                                    VolumeMesh& m, RefinementReport& undone) {
   progress("adaptive refinement, " + std::to_string(q.passes) + " passes (delta " +
            fmt(q.delta, 3) + ")");
   const auto values = [&](const Eigen::MatrixXd& V, const Eigen::MatrixXi&) {
@@ -153,6 +154,8 @@ std::vector<RefinementReport> adapt(const AdaptRequest& q, const ImplicitFunctio
     throw std::runtime_error("--adapt: " + what.substr(what.find(": ") + 2) +
                              " (--max-elements; or fewer passes, a larger --adapt-delta)");
   }
+  if (!reports.empty() && reports.back().undone)
+    undone = reports.back(), reports.pop_back();
   m.B = boundary_facets(m.C, o.threads);
   VolumeSmoothingOptions so;
   so.sweeps = m.C.cols() == 8 ? 0 : interior_sweeps_of(o);
@@ -366,13 +369,14 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
         progress);
   }
   const long before = m.C.rows(), first_new = m.V.rows();
+  RefinementReport undone;
   const std::vector<RefinementReport> passes = adapt_request.passes > 0
-                                                   ? adapt(adapt_request, f, o, progress, m)
+                                                   ? adapt(adapt_request, f, o, progress, m, undone)
                                                    : std::vector<RefinementReport>{};
   if (!passes.empty())
     info.max_boundary_f =
         std::max(info.max_boundary_f, max_new_boundary_f(f, m, first_new, passes));
-  if (!r.default_grid || !passes.empty()) { // else checked above, and unchanged since
+  if (!r.default_grid || !passes.empty() || undone.undone) { // else checked, and unchanged since
     progress("checking the elements");
     q = volume_quality(m.V, m.C, r.threads, &per);
     sag = check_sag(f, m.V, m.B, q.volume, info.grid.spacing(0), r.threads, progress);
@@ -406,7 +410,17 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
     std::cout << ", held short of it to keep their elements valid";
     for (const RefinementReport& p : passes)
       std::cout << " " << p.held;
+    if (undone.undone)
+      std::cout << "; pass " << passes.size() + 1 << " undone: " << undone.still_folded
+                << " children stayed folded";
     std::cout << ")\n";
+    if (undone.undone && !r.quiet)
+      std::cerr << "warning: --adapt: pass " << passes.size() + 1 << " left " << undone.still_folded
+                << " children folded (walls thinner than its cells) and "
+                << "was undone; "
+                << (passes.empty() ? std::string("the unrefined mesh")
+                                   : "the mesh after pass " + std::to_string(passes.size()))
+                << " is written (a finer --cell, or fewer passes)\n";
   }
   if (q.inverted > 0)
     throw std::runtime_error(

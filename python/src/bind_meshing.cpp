@@ -107,7 +107,8 @@ py::dict refinement_dict(const RefinementReport& r) {
       field("split", &RefinementReport::split), field("new_nodes", &RefinementReport::new_nodes),
       field("projected", &RefinementReport::projected), field("held", &RefinementReport::held),
       field("widened", &RefinementReport::widened), field("folded", &RefinementReport::folded),
-      field("still_folded", &RefinementReport::still_folded));
+      field("still_folded", &RefinementReport::still_folded),
+      field("undone", &RefinementReport::undone));
 }
 
 // Elements (E, corners: 4 tetrahedra, 8 hexahedra) and boundary flags (N,) as the refinement
@@ -206,7 +207,8 @@ a nearly flat parent's map folds, untangled), still_folded (after), projected, h
         py::arg("V"), py::arg("C"), py::arg("boundary"), py::arg("field"), py::arg("delta"),
         py::arg("iterations"), py::arg("f") = py::none(),
         R"(adapt_tetrahedra for hexahedra: `iterations` times field(V, C) -> (N,), then
-refine_hexahedra with delta; stops when nothing is flagged -> (V, C, boundary, [report dict per
+refine_hexahedra with delta; stops when nothing is flagged, or when a pass leaves children
+folded (that pass undone: its report's "undone" is True) -> (V, C, boundary, [report dict per
 pass]).)");
 }
 

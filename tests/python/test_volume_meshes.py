@@ -157,6 +157,7 @@ def test_hexahedral_refinement_is_conforming_and_follows_the_field():
     V, C, B, boundary, info = interlin.mesh_volume(ball, "hex", resolution=8, threads=1)
     V2, C2, b2, passes = interlin.adapt_hexahedra(V, C, boundary, front, 0.3, 2, ball)
     assert len(passes) == 2 and sum(p["projected"] for p in passes) > 0
+    assert not any(p["undone"] for p in passes) and all(p["still_folded"] == 0 for p in passes)
     held = sum(p["held"] for p in passes)
     assert np.sum(np.abs(np.linalg.norm(V2[b2], axis=1) - 1) > 1e-9) <= held
     assert interlin.volume_quality(V2, C2, threads=1)["inverted"] == 0

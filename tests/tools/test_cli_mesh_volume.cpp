@@ -191,6 +191,22 @@ TEST_CASE("CLI mesh --volume hex --adapt: 3-refinement where the model's field v
   CHECK(files_in(d) == 1u);
 }
 
+TEST_CASE("CLI mesh --volume hex --adapt: a pass that leaves children folded is undone",
+          "[cli][mesh][volume][heavy]") {
+  // The valve at cell 0.4 or 0.5: pass 2 splits children in walls thinner than a cell, some stay
+  // folded; the mesh after pass 1 is written with a warning (before: refused, exit 1, no mesh).
+  TempDir d("climeshvol");
+  const Run r = run("mesh " + std::string(INTERLIN_DATA_DIR) +
+                    "/models/valve.rf --volume hex --cell 0.5 --adapt 2 -o " + (d / "v.vtu"));
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("adapted      1 passes") &&
+                        Catch::Contains("; pass 2 undone: ") && Catch::Contains("inverted 0"));
+  CHECK_THAT(r.err, Catch::Contains("warning: --adapt: pass 2 left ") &&
+                        Catch::Contains("the mesh after pass 1 is written"));
+  CHECK(files_in(d) == 1u);
+}
+
 TEST_CASE("CLI mesh --volume: the volume the projected layer loses is reported",
           "[cli][mesh][volume]") {
   // A spherical shell 0.1 thick: at cell 0.05 the hexahedral layer has almost no cell to stand on

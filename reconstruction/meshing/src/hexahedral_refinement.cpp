@@ -690,11 +690,14 @@ std::vector<long> folded_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXi& 
 
 // Children folded by a nearly flat parent's trilinear map (pillows at creases: the map folds
 // inside though its corners do not) untangled: the free nodes near them move, every node on the
-// boundary facets stays. A child whose boundary face is itself folded stays folded so (the car at
-// cell 0.3, the valve at 0.2): the patch around those is untangled again with the facets' nodes
-// sliding on F = 0 (rep.folded, rep.still_folded).
-void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, Eigen::MatrixXd& V,
-                       RefinementReport& rep) {
+// boundary facets stays. A child whose boundary face is itself folded stays folded so (the valve
+// at 0.2): the patch around those is untangled again with the facets' nodes sliding on F = 0. A
+// parent whose boundary face is a sliver along a crease (the car at 0.3) has children folded on
+// F = 0 whichever way its nodes slide: there the new nodes (from `first_new` on) of the facets
+// move off F = 0 too, and the projection holds them where they keep their elements valid.
+// Counts rep.folded, rep.still_folded.
+void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, long first_new,
+                       Eigen::MatrixXd& V, RefinementReport& rep) {
   const Eigen::MatrixXi T = corner_table(8);
   for (long e = 0; e < C.rows(); ++e)
     rep.folded += !valid_hexahedron(V, C, e, T);
@@ -703,7 +706,7 @@ void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, Eige
   const std::vector<char> fixed = facet_nodes(C, V.rows());
   detail::untangle_hexahedra(C, fixed, 0, V);
   open_centre_folds(C, fixed, T, V);
-  const std::vector<long> nodes = folded_nodes(C, T, V);
+  std::vector<long> nodes = folded_nodes(C, T, V);
   if (!nodes.empty() && f.value) {
     const Patch patch = patch_around(C, V.rows(), nodes, kPatchRings);
     Eigen::MatrixXd W = V(patch.node, Eigen::all);
@@ -716,6 +719,12 @@ void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, Eige
     detail::untangle_hexahedra(patch.C, held, surface, slides, 0, W);
     open_centre_folds(patch.C, held, T, W);
     V(patch.node, Eigen::all) = W;
+    nodes = folded_nodes(C, T, V);
+  }
+  if (!nodes.empty()) { // the max-min search alone: functional (15) drifts free facet nodes
+    std::vector<char> held = fixed;
+    std::fill(held.begin() + first_new, held.end(), 0);
+    open_centre_folds(C, held, T, V);
   }
   for (long e = 0; e < C.rows(); ++e)
     rep.still_folded += !valid_hexahedron(V, C, e, T);
@@ -946,9 +955,15 @@ RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
   for (size_t e = 0; e < out.size(); ++e)
     for (int j = 0; j < 8; ++j)
       C(long(e), j) = out[e][size_t(j)];
-  untangle_children(f, C, V, rep);
+  untangle_children(f, C, made.first, V, rep);
   if (!project.empty())
     project_new_nodes(f, parents, C, made, project, V, boundary, rep);
+  if (rep.still_folded > 0) { // the projection's untangling may have opened some; it folds none
+    const Eigen::MatrixXi T = corner_table(8);
+    rep.still_folded = 0;
+    for (long e = 0; e < C.rows(); ++e)
+      rep.still_folded += !valid_hexahedron(V, C, e, T);
+  }
   return rep;
 }
 
@@ -978,7 +993,15 @@ std::vector<RefinementReport> adapt_hexahedra(
   std::vector<RefinementReport> reports;
   for (int it = 0; it < iterations; ++it) {
     Eigen::VectorXd values = field(V, C);
+    const Eigen::MatrixXd V0 = V;
+    const Eigen::MatrixXi C0 = C;
+    const std::vector<char> boundary0 = boundary;
     reports.push_back(refine_hexahedra(V, C, boundary, values, delta, f, max_elements));
+    if (reports.back().still_folded > 0) { // a valid mesh of fewer passes, not a folded one
+      V = V0, C = C0, boundary = boundary0;
+      reports.back().undone = true;
+      break;
+    }
     if (reports.back().flagged == 0)
       break;
   }

@@ -9,7 +9,9 @@
 #include "interlin/reconstruction/meshing/volume_mesh.h"
 #include "interlin/reconstruction/meshing/volume_quality.h"
 
+#include "car_sliver_pillows.h"
 #include "support/test_implicits.h"
+#include "valve_thin_wall_children.h"
 
 #include <catch2/catch.hpp>
 
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <sstream>
 #include <vector>
 
 using namespace interlin;
@@ -128,6 +131,23 @@ Eigen::MatrixXd unit_cube() {
   Eigen::MatrixXd P(8, 3);
   P << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
   return P;
+}
+
+// A mesh fixture (car_sliver_pillows.h): rows x y z boundary, then 8 node ids per hexahedron.
+void read_fixture(const char* text, long nodes, long elements, Eigen::MatrixXd& V,
+                  Eigen::MatrixXi& C, std::vector<char>& boundary) {
+  std::istringstream in(text);
+  V.resize(nodes, 3), C.resize(elements, 8), boundary.assign(size_t(nodes), 0);
+  for (long v = 0; v < nodes; ++v) {
+    int on = 0;
+    in >> V(v, 0) >> V(v, 1) >> V(v, 2) >> on;
+    boundary[size_t(v)] = char(on);
+  }
+  for (long e = 0; e < elements; ++e)
+    for (int j = 0; j < 8; ++j)
+      in >> C(e, j);
+  REQUIRE(in);
+  REQUIRE(C.maxCoeff() < nodes);
 }
 
 } // namespace
@@ -444,6 +464,77 @@ TEST_CASE("refine_hexahedra: the impeller's and the valve's default hexahedra, o
     if (row.volume > 0) // the unrefined impeller at 0.5 already leaves out 5 %
       CHECK(q.volume == Approx(row.volume).epsilon(0.001));
   }
+}
+
+TEST_CASE("split_hexahedra: pillows with sliver boundary faces (the car at cell 0.3)",
+          "[volume][adapt][hex]") {
+  // Children on a sliver face fold on F = 0 whichever way the facets' nodes slide (6 stayed
+  // folded); the new nodes of those facets then leave F = 0 for the max-min search, and the
+  // projection holds them where their elements stay valid.
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi C;
+  std::vector<char> boundary;
+  read_fixture(test::kCarSliverPillows, 92, 38, V, C, boundary);
+  const double volume0 = volume_quality(V, C).volume;
+  const ImplicitFunction f = load_implicit(std::string(INTERLIN_DATA_DIR) + "/models/car.rf");
+  Eigen::VectorXd values = V.col(0);
+  const long nodes0 = V.rows();
+  const RefinementReport r = split_hexahedra(V, C, boundary, values, std::vector<char>(92, 1), f);
+  INFO("folded " << r.folded << " (" << r.still_folded << " left); projected " << r.projected
+                 << ", held " << r.held);
+  CHECK(C.rows() == 38 * 27);
+  CHECK(r.folded > 0);
+  CHECK(r.still_folded == 0);
+  const VolumeQuality q = volume_quality(V, C);
+  CHECK(q.inverted == 0);
+  CHECK(q.min_scaled_jacobian > 0);
+  // Measured: 23 of 136 held (the slivers' new facet nodes), the volume 0.750595 -> 0.750603.
+  CHECK(r.held <= r.projected / 4);
+  CHECK(q.volume == Approx(volume0).epsilon(1e-3));
+  Eigen::VectorXd F(V.rows() - nodes0);
+  f.value(V.bottomRows(F.size()), F);
+  long on_zero = 0; // the new boundary nodes not held are on F = 0
+  for (long k = 0; k < F.size(); ++k)
+    on_zero += boundary[size_t(nodes0 + k)] && std::abs(F(k)) < 1e-9;
+  CHECK(on_zero >= r.projected - r.held);
+}
+
+TEST_CASE("adapt_hexahedra: a pass that leaves children folded is undone", "[volume][adapt][hex]") {
+  // Children in a wall thinner than the cell (the valve at 0.4, pass 2): 6 stay folded through
+  // every untangling, so the loop keeps the mesh it had (before: returned folded, and the CLI
+  // refused the whole run).
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi C;
+  std::vector<char> boundary;
+  read_fixture(test::kValveThinWallChildren, 99, 42, V, C, boundary);
+  const ImplicitFunction f = load_implicit(std::string(INTERLIN_DATA_DIR) + "/models/valve.rf");
+  const auto F = [&f](const Eigen::MatrixXd& W, const Eigen::MatrixXi&) {
+    Eigen::VectorXd v(W.rows());
+    f.value(W, v);
+    return v;
+  };
+  {
+    Eigen::MatrixXd W = V;
+    Eigen::MatrixXi D = C;
+    std::vector<char> b = boundary;
+    Eigen::VectorXd values = F(W, D);
+    const RefinementReport r = refine_hexahedra(W, D, b, values, 0, f);
+    INFO("folded " << r.folded << ", " << r.still_folded << " left");
+    CHECK(r.still_folded > 0); // measured 4 of 37 (6 before the projection)
+    CHECK(!r.undone);
+    CHECK(volume_quality(W, D).inverted == r.still_folded);
+  }
+  const Eigen::MatrixXd V0 = V;
+  const Eigen::MatrixXi C0 = C;
+  const std::vector<char> boundary0 = boundary;
+  const std::vector<RefinementReport> passes = adapt_hexahedra(V, C, boundary, F, 0, 2, f);
+  REQUIRE(passes.size() == 1);
+  CHECK(passes[0].undone);
+  CHECK(passes[0].still_folded > 0);
+  CHECK(V == V0);
+  CHECK(C == C0);
+  CHECK(boundary == boundary0);
+  CHECK(volume_quality(V, C).inverted == 0);
 }
 
 TEST_CASE("split_hexahedra: bad arguments", "[volume][adapt][hex]") {

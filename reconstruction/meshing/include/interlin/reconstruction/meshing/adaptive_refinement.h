@@ -31,12 +31,13 @@ struct RefinementReport {
   long widened = 0;       // ... of which added by the closure (hexahedra; tetrahedra: 0)
   long folded = 0;        // hexahedra: children the parent's trilinear map folds (nearly flat
                           // parents) before untangling ...
-  long still_folded = 0;  // ... and after it
-  long split = 0;         // elements replaced by children
-  long new_nodes = 0;     // edge midpoints added
-  long projected = 0;     // of those, on boundary edges and moved onto F = 0 ...
-  long held = 0;          // ... of which held short of it (the largest of 1, 1/2, ... 1/1024 of the
-                          // way that inverts no element; 0: left on the edge) ...
+  long still_folded = 0;  // ... and after it (and after the projection's untangling)
+  bool undone = false; // hexahedra, adapt_hexahedra: the pass left children folded and was undone
+  long split = 0;      // elements replaced by children
+  long new_nodes = 0;  // edge midpoints added
+  long projected = 0;  // of those, on boundary edges and moved onto F = 0 ...
+  long held = 0;       // ... of which held short of it (the largest of 1, 1/2, ... 1/1024 of the
+                       // way that inverts no element; 0: left on the edge) ...
   std::vector<long> held_nodes; // ... these nodes (flagged boundary: they stay in smoothing)
 };
 

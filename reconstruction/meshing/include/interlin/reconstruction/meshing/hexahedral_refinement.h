@@ -38,7 +38,9 @@ long close_refined_nodes(const Eigen::MatrixXi& C, std::vector<char>& refined);
 // so the mesh stays conforming. New nodes on boundary facets (faces of one element whose nodes
 // are all boundary nodes) are projected onto F = 0 when f has a value (gradient walk), each the
 // largest fraction 1, 1/2, ..., 1/1024 of the way that folds none of its elements (held short
-// otherwise, and counted). Children keep the parent's orientation.
+// otherwise, and counted). Children keep the parent's orientation: those a nearly flat parent's
+// trilinear map folds are untangled (report.folded, still_folded), the new nodes of a sliver
+// boundary face leaving F = 0 where they must.
 // Inputs:
 //   C        #C by 8 hexahedra, VTK order, positively oriented
 //   refined  #V flags of the refined nodes (std::invalid_argument for a wrong size)
@@ -67,7 +69,9 @@ RefinementReport refine_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
                                   long max_elements = 0);
 
 // Seed 003's adaptive loop on hexahedra: `iterations` times field(V, C), then refine_hexahedra;
-// stops early when nothing is flagged. Returns one report per pass made.
+// stops early when nothing is flagged, or when a pass leaves children folded (walls thinner than
+// its cells: the valve at cell 0.4, pass 2): that pass is undone (report.undone) and the mesh of
+// the passes before returned. Returns one report per pass made.
 std::vector<RefinementReport> adapt_hexahedra(
     Eigen::MatrixXd& V, Eigen::MatrixXi& C, std::vector<char>& boundary,
     const std::function<Eigen::VectorXd(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C)>& field,
