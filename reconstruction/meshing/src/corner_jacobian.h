@@ -48,4 +48,22 @@ inline double centre_jacobian(const Eigen::Vector3d p[8]) {
   return x[0].cross(x[1]).dot(x[2]);
 }
 
+// Mean edge length of hexahedron e (C #C by 8, VTK order: its 12 edges).
+inline double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
+  constexpr int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                 {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  double sum = 0;
+  for (const auto& edge : kEdges)
+    sum += (V.row(C(e, edge[0])) - V.row(C(e, edge[1]))).norm();
+  return sum / 12;
+}
+
+// The mean of the hexahedra's mean edge lengths.
+inline double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C) {
+  double mean = 0;
+  for (long e = 0; e < C.rows(); ++e)
+    mean += mean_edge(V, C, e) / double(C.rows());
+  return mean;
+}
+
 } // namespace interlin::detail

@@ -651,22 +651,6 @@ Patch patch_around(const Eigen::MatrixXi& C, long nodes, const std::vector<long>
   return p;
 }
 
-// Mean edge length of element e.
-double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e) {
-  double sum = 0;
-  for (const auto& edge : kEdge)
-    sum += (V.row(C(e, edge[0])) - V.row(C(e, edge[1]))).norm();
-  return sum / 12;
-}
-
-// The mean of the elements' mean edge lengths.
-double mean_edge(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C) {
-  double mean = 0;
-  for (long e = 0; e < C.rows(); ++e)
-    mean += mean_edge(V, C, e) / double(C.rows());
-  return mean;
-}
-
 // Flags (#nodes) the nodes of C's boundary facets.
 std::vector<char> facet_nodes(const Eigen::MatrixXi& C, long nodes) {
   std::vector<char> on(size_t(nodes), 0);
@@ -715,7 +699,7 @@ void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, long
       held[k] = fixed[size_t(patch.node[k])] || !patch.free[k];
       slides[k] = fixed[size_t(patch.node[k])] && patch.free[k];
     }
-    const SlidingSurface surface = detail::implicit_surface(f, mean_edge(W, patch.C), 0);
+    const SlidingSurface surface = detail::implicit_surface(f, detail::mean_edge(W, patch.C), 0);
     detail::untangle_hexahedra(patch.C, held, surface, slides, 0, W);
     open_centre_folds(patch.C, held, T, W);
     V(patch.node, Eigen::all) = W;
@@ -833,7 +817,7 @@ std::vector<long> untangle_held(const ImplicitFunction& f, const std::vector<lon
     is_held[size_t(n)] = 1;
   const Patch patch = patch_around(C, V.rows(), held, kPatchRings);
   Eigen::MatrixXd W = V(patch.node, Eigen::all);
-  const SlidingSurface surface = detail::implicit_surface(f, mean_edge(W, patch.C), 0);
+  const SlidingSurface surface = detail::implicit_surface(f, detail::mean_edge(W, patch.C), 0);
   for (int attempt = 0; attempt < kTries; ++attempt) {
     std::vector<char> bad(size_t(V.rows()), 0);
     const long folded = untangle_patch(surface, is_held, to, patch, on_facet, on_zero, stays, V,
@@ -864,7 +848,7 @@ void project_new_nodes(const ImplicitFunction& f, const Eigen::MatrixXi& parents
   Eigen::VectorXd h(P.rows());
   for (size_t r = 0; r < project.size(); ++r) {
     P.row(long(r)) = V.row(made.first + project[r]);
-    h(long(r)) = mean_edge(V, parents, made.origin[size_t(project[r])].element) / 12;
+    h(long(r)) = detail::mean_edge(V, parents, made.origin[size_t(project[r])].element) / 12;
   }
   std::vector<char> moved;
   project_by_gradient_walk(f, P, h, 100, {}, &moved);

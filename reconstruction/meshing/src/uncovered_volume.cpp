@@ -50,27 +50,42 @@ bool element_contains(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e
   return false;
 }
 
-// (cube, element) for every cube of g that an element's bounding box overlaps, sorted by cube.
-std::vector<std::pair<long, int>> elements_by_cube(const RegularGrid& g, const Eigen::MatrixXd& V,
-                                                   const Eigen::MatrixXi& C) {
+// Elements by the cubes of g their bounding boxes overlap: (cube, element) sorted by cube, and
+// the elements whose boxes span more than kMaxCubes cubes apart (a distorted element must not
+// fill memory with pairs; each of those is tried for every point).
+struct ElementBuckets {
+  static constexpr long kMaxCubes = 4096;
+  std::vector<std::pair<long, int>> by_cube;
+  std::vector<int> oversized;
+};
+
+ElementBuckets elements_by_cube(const RegularGrid& g, const Eigen::MatrixXd& V,
+                                const Eigen::MatrixXi& C) {
   const Eigen::Array3i cells = g.nodes - 1;
   auto cube = [&](double x, int a) {
-    const long i = long(std::floor((x - g.origin(a)) / g.spacing(a)));
-    return std::clamp(i, 0L, long(cells(a)) - 1);
+    const double i = std::floor((x - g.origin(a)) / g.spacing(a));
+    return std::isnan(i) ? 0L : long(std::clamp(i, 0.0, double(cells(a) - 1)));
   };
-  std::vector<std::pair<long, int>> out;
+  ElementBuckets out;
   for (long e = 0; e < C.rows(); ++e) {
     Eigen::Array3d lo = V.row(C(e, 0)).transpose(), hi = lo;
     for (long j = 1; j < C.cols(); ++j) {
       lo = lo.min(V.row(C(e, j)).transpose().array());
       hi = hi.max(V.row(C(e, j)).transpose().array());
     }
+    long span = 1;
+    for (int a = 0; a < 3; ++a)
+      span *= cube(hi(a), a) - cube(lo(a), a) + 1;
+    if (span > ElementBuckets::kMaxCubes || !lo.allFinite() || !hi.allFinite()) {
+      out.oversized.push_back(int(e));
+      continue;
+    }
     for (long k = cube(lo(2), 2); k <= cube(hi(2), 2); ++k)
       for (long j = cube(lo(1), 1); j <= cube(hi(1), 1); ++j)
         for (long i = cube(lo(0), 0); i <= cube(hi(0), 0); ++i)
-          out.emplace_back(i + cells(0) * (j + cells(1) * k), int(e));
+          out.by_cube.emplace_back(i + cells(0) * (j + cells(1) * k), int(e));
   }
-  std::sort(out.begin(), out.end());
+  std::sort(out.by_cube.begin(), out.by_cube.end());
   return out;
 }
 
@@ -214,7 +229,7 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
     throw std::invalid_argument("uncovered_volume: C must be #C by 4 or #C by 8");
   if (V.cols() != 3)
     throw std::invalid_argument("uncovered_volume: V must be #V by 3");
-  const std::vector<std::pair<long, int>> buckets = elements_by_cube(g, V, C);
+  const ElementBuckets buckets = elements_by_cube(g, V, C);
   const Eigen::Array3i cells = g.nodes - 1;
   const Eigen::MatrixXd& P = body.V;
   const Eigen::MatrixXi& T = body.C;
@@ -234,12 +249,14 @@ UncoveredVolume uncovered_volume(const CutTetrahedra& body, const RegularGrid& g
         const long i = long(std::floor((p(axis) - g.origin(axis)) / g.spacing(axis)));
         cube = cube * cells(axis) + std::clamp(i, 0L, long(cells(axis)) - 1);
       }
-      const auto range =
-          std::equal_range(buckets.begin(), buckets.end(), std::pair<long, int>{cube, -1},
-                           [](const auto& x, const auto& y) { return x.first < y.first; });
+      const auto range = std::equal_range(
+          buckets.by_cube.begin(), buckets.by_cube.end(), std::pair<long, int>{cube, -1},
+          [](const auto& x, const auto& y) { return x.first < y.first; });
       bool covered = false;
       for (auto it = range.first; it != range.second && !covered; ++it)
         covered = element_contains(V, C, it->second, p);
+      for (size_t k = 0; k < buckets.oversized.size() && !covered; ++k)
+        covered = element_contains(V, C, buckets.oversized[k], p);
       cube_of[size_t(e)] = cube;
       body_part[size_t(task)] += volume;
       if (!covered)

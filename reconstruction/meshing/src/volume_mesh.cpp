@@ -614,13 +614,18 @@ std::vector<char> near_poor(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, 
 // improvement", through the seed's functional), over the nodes not flagged in `fixed_always`
 // (sweeps of smooth_volume), and the nodes flagged in `slides` of poor elements sliding on F = 0
 // under the same functional (slide_boundary_nodes; none when surface is null). Stops when no
-// element is poor or after kRounds rounds (kStall without progress). Returns the elements still
-// poor.
+// element is poor or after kRounds rounds (kStall without progress). The functional grows with an
+// element's size, so a node of elements that stay folded can run off (a tube whose wall is 0.6
+// cells: pillow nodes 300 cells out of the box, and the coverage's buckets then filled memory);
+// nodes moved more than kRunaway mean edges go back, their elements staying folded. Returns the
+// elements still poor.
 long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_always,
                      const SlidingSurface* surface, const std::vector<char>& slides, double tau,
                      int threads, Eigen::MatrixXd& V) {
   constexpr int kRounds = 30, kStall = 3;
   constexpr double kSharpness = 30; // exp(-30) between the mean corner and a flat one
+  constexpr double kRunaway = 16;
+  const Eigen::MatrixXd start = V;
   long poor = 0, best = -1;
   int stalled = 0;
   for (int round = 0; round < kRounds; ++round) {
@@ -644,6 +649,12 @@ long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_al
     V(sub.node, Eigen::all) = W;
     if (surface != nullptr)
       slide_boundary_nodes(V, C, slides, *surface, so.t, kSlideFlat, threads);
+  }
+  if (best >= 0) {
+    const double far = kRunaway * detail::mean_edge(start, C);
+    for (long v = 0; v < V.rows(); ++v)
+      if (!((V.row(v) - start.row(v)).norm() <= far))
+        V.row(v) = start.row(v);
   }
   near_poor(C, V, tau, threads, poor);
   return poor;

@@ -75,6 +75,31 @@ TEST_CASE("uncovered_volume: a mesh of some of the clipped pieces leaves out exa
   }
 }
 
+TEST_CASE("uncovered_volume: an element whose box spans the grid is tried apart", "[volume]") {
+  // A needle along the box's diagonal from 1e6 out, 7 away from the ball's centre, overlaps every
+  // cube (8,000 > 4,096: tried for every point instead of filling a pair per cube; a pillow node
+  // run 300 cells off once filled memory so) and contains no piece's centroid; a tetrahedron
+  // 100 across holding the box covers every piece.
+  const Clipped c = clipped(test::sphere(1.0), 20);
+  Eigen::MatrixXd V = c.body.V;
+  const long n = V.rows();
+  V.conservativeResize(n + 8, 3);
+  V.row(n) << -1e6 + 5, -1e6 - 5, -1e6;
+  V.row(n + 1) << 1e6 + 5, 1e6 - 5, 1e6;
+  V.row(n + 2) << 1e6 + 5, 1e6 - 5 + 1e-3, 1e6;
+  V.row(n + 3) << 1e6 + 5, 1e6 - 5, 1e6 + 1e-3;
+  V.row(n + 4) << -10, -10, -10;
+  V.row(n + 5) << 100, -10, -10;
+  V.row(n + 6) << -10, 100, -10;
+  V.row(n + 7) << -10, -10, 100;
+  Eigen::MatrixXi needle(1, 4), all(1, 4);
+  needle << int(n), int(n + 1), int(n + 2), int(n + 3);
+  all << int(n + 4), int(n + 5), int(n + 6), int(n + 7);
+  const UncoveredVolume none = uncovered_volume(c.body, c.g, V, needle);
+  CHECK(none.lost == Approx(none.body).epsilon(1e-12));
+  CHECK(uncovered_volume(c.body, c.g, V, all).lost == 0);
+}
+
 TEST_CASE("uncovered_volume: hexahedra of the inside cubes leave out the rest of the body",
           "[volume]") {
   // The grid's cubes with 8 inside nodes as hexahedra: lost = body - (their number) h^3, up to the
