@@ -617,7 +617,8 @@ std::vector<char> near_poor(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, 
 // element is poor or after kRounds rounds (kStall without progress). The functional grows with an
 // element's size, so a node of elements that stay folded can run off (a tube whose wall is 0.6
 // cells: pillow nodes 300 cells out of the box, and the coverage's buckets then filled memory);
-// nodes moved more than kRunaway mean edges go back, their elements staying folded. Returns the
+// nodes moved more than kRunaway mean edges beyond the box of the nodes' start go back, their
+// elements staying folded. Returns the
 // elements still poor.
 long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_always,
                      const SlidingSurface* surface, const std::vector<char>& slides, double tau,
@@ -650,10 +651,12 @@ long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_al
     if (surface != nullptr)
       slide_boundary_nodes(V, C, slides, *surface, so.t, kSlideFlat, threads);
   }
-  if (best >= 0) {
+  if (best >= 0 && V.rows() > 0) {
     const double far = kRunaway * detail::mean_edge(start, C);
+    const Eigen::RowVector3d lo = start.colwise().minCoeff().array() - far,
+                             hi = start.colwise().maxCoeff().array() + far;
     for (long v = 0; v < V.rows(); ++v)
-      if (!((V.row(v) - start.row(v)).norm() <= far))
+      if (!((V.row(v).array() >= lo.array()).all() && (V.row(v).array() <= hi.array()).all()))
         V.row(v) = start.row(v);
   }
   near_poor(C, V, tau, threads, poor);
