@@ -376,7 +376,8 @@ void mesh_volume(const ParsedArgs& a, const ImplicitFunction& f, const VolumeReq
   if (!passes.empty())
     info.max_boundary_f =
         std::max(info.max_boundary_f, max_new_boundary_f(f, m, first_new, passes));
-  if (!r.default_grid || !passes.empty() || undone.undone) { // else checked, and unchanged since
+  if (!r.default_grid || !passes.empty()) { // else checked above, and unchanged since (an undone
+    // pass restores the mesh it started from)
     progress("checking the elements");
     q = volume_quality(m.V, m.C, r.threads, &per);
     sag = check_sag(f, m.V, m.B, q.volume, info.grid.spacing(0), r.threads, progress);

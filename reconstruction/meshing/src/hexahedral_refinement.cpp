@@ -481,6 +481,14 @@ bool valid_hexahedron(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, long e
   return !detail::corner_scaled_jacobian(p, T).inverted && detail::centre_jacobian(p) > 0;
 }
 
+// The elements folded at a corner or at the centre (not valid_hexahedron).
+long count_folded(const Eigen::MatrixXd& V, const Eigen::MatrixXi& C, const Eigen::MatrixXi& T) {
+  long n = 0;
+  for (long e = 0; e < C.rows(); ++e)
+    n += !valid_hexahedron(V, C, e, T);
+  return n;
+}
+
 // The children of every element by its (closed) code; new nodes recorded in `made`.
 std::vector<std::array<int, 8>> children(const Eigen::MatrixXi& C, const std::vector<char>& refined,
                                          NewNodes& made, long& split) {
@@ -683,8 +691,7 @@ std::vector<long> folded_nodes(const Eigen::MatrixXi& C, const Eigen::MatrixXi& 
 void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, long first_new,
                        Eigen::MatrixXd& V, RefinementReport& rep) {
   const Eigen::MatrixXi T = corner_table(8);
-  for (long e = 0; e < C.rows(); ++e)
-    rep.folded += !valid_hexahedron(V, C, e, T);
+  rep.folded = count_folded(V, C, T);
   if (rep.folded == 0)
     return;
   const std::vector<char> fixed = facet_nodes(C, V.rows());
@@ -710,8 +717,7 @@ void untangle_children(const ImplicitFunction& f, const Eigen::MatrixXi& C, long
     std::fill(held.begin() + first_new, held.end(), 0);
     open_centre_folds(C, held, T, V);
   }
-  for (long e = 0; e < C.rows(); ++e)
-    rep.still_folded += !valid_hexahedron(V, C, e, T);
+  rep.still_folded = count_folded(V, C, T);
 }
 
 // Where the new boundary nodes go on F = 0: node n's projection is P.row(at[n]) (-1: none).
@@ -942,12 +948,8 @@ RefinementReport split_hexahedra(Eigen::MatrixXd& V, Eigen::MatrixXi& C,
   untangle_children(f, C, made.first, V, rep);
   if (!project.empty())
     project_new_nodes(f, parents, C, made, project, V, boundary, rep);
-  if (rep.still_folded > 0) { // the projection's untangling may have opened some; it folds none
-    const Eigen::MatrixXi T = corner_table(8);
-    rep.still_folded = 0;
-    for (long e = 0; e < C.rows(); ++e)
-      rep.still_folded += !valid_hexahedron(V, C, e, T);
-  }
+  if (rep.still_folded > 0) // the projection's untangling may have opened some; it folds none
+    rep.still_folded = count_folded(V, C, corner_table(8));
   return rep;
 }
 

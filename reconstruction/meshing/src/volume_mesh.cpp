@@ -618,21 +618,22 @@ std::vector<char> near_poor(const Eigen::MatrixXi& C, const Eigen::MatrixXd& V, 
 // element's size, so a node of elements that stay folded can run off (a tube whose wall is 0.6
 // cells: pillow nodes 300 cells out of the box, and the coverage's buckets then filled memory);
 // nodes moved more than kRunaway mean edges beyond the box of the nodes' start go back, their
-// elements staying folded. Returns the
-// elements still poor.
+// elements staying folded. Returns the elements still poor.
 long untangle_rounds(const Eigen::MatrixXi& C, const std::vector<char>& fixed_always,
                      const SlidingSurface* surface, const std::vector<char>& slides, double tau,
                      int threads, Eigen::MatrixXd& V) {
   constexpr int kRounds = 30, kStall = 3;
   constexpr double kSharpness = 30; // exp(-30) between the mean corner and a flat one
   constexpr double kRunaway = 16;
-  const Eigen::MatrixXd start = V;
+  Eigen::MatrixXd start; // V before the first move
   long poor = 0, best = -1;
   int stalled = 0;
   for (int round = 0; round < kRounds; ++round) {
     std::vector<char> fixed = near_poor(C, V, tau, threads, poor);
     if (poor == 0 || (best >= 0 && poor >= best && ++stalled >= kStall))
       break;
+    if (best < 0)
+      start = V;
     best = best < 0 ? poor : std::min(best, poor);
     for (size_t v = 0; v < fixed.size(); ++v)
       fixed[v] = fixed[v] && !fixed_always[v]; // now: the nodes that move
