@@ -335,6 +335,56 @@ bool project_onto_join(const LocalFit& f, const Vector3d& x, Vector3d& y, Vector
   return y.allFinite();
 }
 
+// The anchors: every kAnchorStride-th point in Z-order (spread over the surface) with its own
+// chosen rung (k = 0: none) and an index of their positions.
+constexpr Index kAnchorStride = 8;
+struct Anchors {
+  const detail::NeighbourIndex& index;
+  const std::vector<Rung>& quadric;
+  const std::vector<int>& k;
+};
+
+// A wider quadric for row j of X, whose own chosen rung `mine` averages k points: of the
+// kWiderAnchors nearest anchors on its sheet whose quadric averages at least twice as many
+// points and reaches kWiderReach times the point's distance, the one of most points that moves
+// the point to within kWiderKappa standard deviations of mine's projection (nullptr: none), its
+// points in k_wider. Lepski's test stops a point's rungs at the first rung that leaves the
+// interval of any smaller one, and the noise of a 16- or 32-point rung stays in every later
+// comparison: on the noisy valve 40 % of the points farther than 16 sigma from any edge stop
+// below k_max, at 0.3 to 0.9 sigma from the surface, where a nearby anchor's rungs reached k_max.
+// A wider estimate that agrees with the point's own (one comparison, at the standard deviation
+// of mine's height at its centre) replaces it; at an edge or a thin trailing edge the wider
+// quadrics miss the point's own projection and it keeps its rung (docs/benchmarks.md, "Wider
+// quadrics of nearby anchors").
+const Rung* wider_quadric(const PointRows& X, Index j, const Anchors& anchors, const Rung& mine,
+                          int k, int& k_wider) {
+  constexpr int kWiderAnchors = 24;
+  constexpr double kWiderReach = 2, kWiderKappa = 3;
+  const Vector3d x = X.row(j).head<3>().transpose(), n = X.row(j).tail<3>().transpose();
+  std::vector<int> idx;
+  std::vector<double> d2;
+  anchors.index.knn(x, kWiderAnchors, idx, d2);
+  Vector3d y, normal, ya, na;
+  project(mine, x, y, normal);
+  const Rung* best = nullptr;
+  k_wider = 2 * k - 1; // the least count to beat
+  for (size_t m = 0; m < idx.size(); ++m) {
+    const size_t a = size_t(idx[m]);
+    const Rung& q = anchors.quadric[a];
+    if (anchors.k[a] <= k_wider || X.row(idx[m] * kAnchorStride).tail<3>().dot(n) < kSheetCos ||
+        kWiderReach * kWiderReach * d2[m] > q.reach * q.reach)
+      continue;
+    project(q, x, ya, na);
+    if (std::abs((ya - y).dot(n)) <= kWiderKappa * mine.sd) {
+      best = &q;
+      k_wider = anchors.k[a];
+    }
+  }
+  if (!best)
+    k_wider = k;
+  return best;
+}
+
 } // namespace
 
 SmoothedPoints smooth_scan_points(const Eigen::MatrixX3d& P, const Eigen::MatrixX3d& N,
@@ -353,12 +403,10 @@ SmoothedPoints smooth_scan_points(const Eigen::MatrixX3d& P, const Eigen::Matrix
   const Eigen::MatrixX3d ZP = X.leftCols<3>(), ZN = X.rightCols<3>(); // the edge sheets' input
   const detail::OrientedPoints zpts{ZP, ZN};
   std::atomic<long> on_edges{0};
-  // Every kAnchorStride-th point in Z-order (spread over the surface) is an anchor with its own
-  // rungs; another point is projected onto its nearest anchor's quadric when that quadric has at
-  // least kAnchorRung points and reaches kAnchorReach times the distance (the quadric of many
-  // points is as good a few spacings off its centre), else it gets its own rungs (near edges,
-  // where the rungs stop early).
-  constexpr Index kAnchorStride = 8;
+  // Each anchor has its own rungs; another point is projected onto its nearest anchor's quadric
+  // when that quadric has at least kAnchorRung points and reaches kAnchorReach times the
+  // distance (the quadric of many points is as good a few spacings off its centre), else it gets
+  // its own rungs (near edges, where the rungs stop early).
   constexpr int kAnchorRung = 128;
   constexpr double kAnchorReach = 4;
   constexpr int kAnchorChoice = 4;
@@ -373,6 +421,7 @@ SmoothedPoints smooth_scan_points(const Eigen::MatrixX3d& P, const Eigen::Matrix
   });
   const detail::NeighbourIndex anchor_index(
       X(Eigen::seq(0, Eigen::last, kAnchorStride), Eigen::seqN(0, 3)));
+  const Anchors all_anchors{anchor_index, quadric, anchor_k};
   detail::parallel_for(P.rows(), detail::resolve_threads(threads), [&](long j, int) {
     const Vector3d x = X.row(j).head<3>().transpose();
     std::vector<int> idx;
@@ -398,10 +447,16 @@ SmoothedPoints smooth_scan_points(const Eigen::MatrixX3d& P, const Eigen::Matrix
     }
     if (k == 0)
       return;
+    if (k < k_max)
+      if (int k_wider = 0; const Rung* w = wider_quadric(X, j, all_anchors, *r, k, k_wider)) {
+        r = w;
+        k = k_wider;
+      }
     const Index i = order[size_t(j)];
     Vector3d y, normal;
-    // Rungs that reached k_max lie on a smooth part (at edges Lepski's test stops them early):
-    // no edge test there (the 100k blade: 4.4 s instead of 4.7 s, the same Chamfer to 1 %).
+    // Points on a quadric of k_max points (their own or a wider anchor's) lie on a smooth part (at
+    // edges Lepski's test stops the rungs early): no edge test there (the 100k blade: 4.4 s instead
+    // of 4.7 s, the same Chamfer to 1 %).
     if (LocalFit f; edges && k < k_max &&
                     edge_sheets_at(zpts, j, index, near ? &*near : nullptr, f) &&
                     project_onto_join(f, x, y, normal)) {

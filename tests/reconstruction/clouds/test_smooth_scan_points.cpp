@@ -92,11 +92,13 @@ TEST_CASE("smooth_scan_points: on a noisy plane the noise falls to the quadric's
   CHECK(after > 0.8 * closed_form); // the closed form, not a lucky zero
   CHECK(rms_angle(s.N) < M_PI / 180);
   // The default kappa = 1.5 (chosen on the bench's scans, where edges need the rungs to stop
-  // early) stops at a false alarm of 2.1 standard deviations per comparison, several per point:
-  // measured 2.2 times the closed form and 3.8 degrees on the plane.
+  // early) stops a point's rungs at a false alarm of 2.1 standard deviations per comparison,
+  // several per point (2.2 times the closed form and 3.8 degrees without the wider quadrics);
+  // such a point then takes a nearby anchor's wider quadric that agrees with its own rung:
+  // measured 1.05 times the closed form and 1.09 degrees.
   const SmoothedPoints d = smooth_scan_points(c.points, c.normals, sigma);
-  CHECK(interior_rms(c, d.P, normal, 0.7) < 2.5 * closed_form);
-  CHECK(rms_angle(d.N) < 5 * M_PI / 180);
+  CHECK(interior_rms(c, d.P, normal, 0.7) < 1.25 * closed_form);
+  CHECK(rms_angle(d.N) < 1.5 * M_PI / 180);
 }
 
 TEST_CASE("smooth_scan_points: the two sides of a thin wall stay apart", "[clouds][smooth]") {
@@ -185,9 +187,10 @@ TEST_CASE("smooth_scan_points: near a box's edges the points move onto its faces
   // projection moves such points onto the join of the two faces' quadrics. Mean distance to the
   // box of the moved points within 3 spacings of an edge and elsewhere, with and without it;
   // 30,000 points, noise 0.45 spacings, normals as `interlin implicit` prepares them. Measured
-  // near edges 0.00166 against 0.00184 (0.90 x; the input 0.0039), bound 0.95 x; elsewhere
-  // 1.005 x (points up to 4 spacings from an edge take edge sheets), bound 1.02 x; 2,849 points
-  // moved onto edge sheets, 5,013 lie near edges.
+  // near edges 0.00145 against 0.00155 (0.93 x; the input 0.0039), bound 0.95 x; elsewhere
+  // 1.001 x (points up to 4 spacings from an edge take edge sheets), bound 1.02 x; 633 of the
+  // 5,013 points near edges moved onto edge sheets: most take a wider quadric of a nearby anchor
+  // on their own face instead (wider_quadric), which moves them onto that face too.
   const Eigen::Vector3d h(0.5, 0.4, 0.3);
   const double sigma = 0.005, spacing = std::sqrt(8 * (0.2 + 0.15 + 0.12) / 30000.0);
   const PointCloud c =
@@ -213,8 +216,9 @@ TEST_CASE("smooth_scan_points: near a box's edges the points move onto its faces
                       << ", rounded " << rest[1] << ", edge sheets " << rest[0] << "; "
                       << s[0].on_edges << " points onto edge sheets");
   CHECK(s[1].on_edges == 0);
-  CHECK(s[0].on_edges > ne / 2);
+  CHECK(s[0].on_edges > ne / 10);
   CHECK(edge[0] <= 0.95 * edge[1]);
+  CHECK(edge[0] <= 0.4 * edge[2]);
   CHECK(rest[0] <= 1.02 * rest[1]);
 }
 
